@@ -1,0 +1,128 @@
+"""Command-line interface ``spiralbevel``: parses, calls public functions, prints. Computes nothing itself.
+
+Bad input exits with code 2 and lists every problem (dotted field path, value, allowed range, unit), no traceback.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import sys
+from pathlib import Path
+from typing import Optional
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from .errors import ConvergenceError, DesignError, MissingDependencyError, NoContactError, SpiralBevelError
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    help="spiralbevel: design, manufacture and contact analysis of spiral bevel gears.",
+)
+console = Console()
+err_console = Console(stderr=True)
+
+DesignArg = typer.Argument(None, help="Design file (TOML). Default: the bundled aviation 23/65 example.")
+
+
+def _guard(fn):
+    """Turn spiralbevel errors into a clean message and exit code 2 (input) or 1 (computation)."""
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        try:
+            return fn(*args, **kwargs)
+        except DesignError as err:
+            err_console.print(f"[bold red]error:[/] {len(err.problems)} problem(s) in the input")
+            for p in err.problems:
+                err_console.print(f"  - {p}", markup=False, highlight=False)
+            raise typer.Exit(code=2) from None
+        except MissingDependencyError as err:
+            err_console.print(f"[bold red]error:[/] {err}", markup=False)
+            raise typer.Exit(code=2) from None
+        except (ConvergenceError, NoContactError, SpiralBevelError) as err:
+            err_console.print(f"[bold red]error:[/] {err}", markup=False)
+            raise typer.Exit(code=1) from None
+
+    return wrapper
+
+
+@app.command()
+@_guard
+def run(
+    design: Optional[Path] = DesignArg,
+    out: Path = typer.Option(Path("out"), "-o", "--out", help="Output directory (written whole or not at all)."),
+    quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar."),
+):
+    """Compute everything the design asks for and write report.json, plots, STL, STEP and tool paths."""
+    from .io.design_file import load_design
+    from .job import run_design
+
+    spec = load_design(design)
+    summary = run_design(spec, out, progress=not quiet)
+    console.print(f"[green]wrote[/] {out}/ ({len(summary.files)} files)")
+    for line in summary.highlights:
+        console.print(f"  {line}", markup=False, highlight=False)
+
+
+@app.command()
+@_guard
+def blank(
+    design: Optional[Path] = DesignArg,
+    as_json: bool = typer.Option(False, "--json", help="Print the dimension sheet as JSON (ISO symbols, degrees)."),
+    output: Optional[Path] = typer.Option(None, "--output", help="Write the JSON to this file instead of stdout."),
+):
+    """Print the ISO 23509 dimension sheet of pinion and gear."""
+    from .io.design_file import load_design
+    from .io.dimension_sheet import dimension_sheet_json, dimension_sheet_rows
+    from .job.blank import blank_from_design
+
+    spec = load_design(design)
+    result = blank_from_design(spec)
+    if as_json or output is not None:
+        text = json.dumps(dimension_sheet_json(result), indent=2)
+        if output is not None:
+            from .io.atomic import atomic_write_text
+
+            atomic_write_text(output, text + "\n")
+            console.print(f"[green]wrote[/] {output}")
+        else:
+            sys.stdout.write(text + "\n")
+        return
+    table = Table(title=f"Dimension sheet (ISO 23509): {spec.title}")
+    for col in ("symbol", "quantity", "unit", "pinion", "gear"):
+        table.add_column(col, justify="right" if col in ("pinion", "gear") else "left")
+    for sym, desc, unit, v1, v2 in dimension_sheet_rows(result):
+        table.add_row(sym, desc, unit, _fmt(v1), _fmt(v2))
+    console.print(table)
+    for w in getattr(result, "warnings", ()):
+        console.print(f"[yellow]warning:[/] {w}", markup=True)
+
+
+@app.command()
+@_guard
+def check(design: Optional[Path] = DesignArg):
+    """Validate a design file and report every problem."""
+    from .io.design_file import load_design
+
+    spec = load_design(design)
+    console.print(f"[green]ok[/] {spec.title}")
+
+
+def _fmt(v) -> str:
+    if v is None or v == "":
+        return ""
+    if isinstance(v, float):
+        return f"{v:.4f}"
+    return str(v)
+
+
+def main():  # pragma: no cover - console entry point
+    app()
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,107 @@
+"""Design-file schema (TOML, validated by pydantic with ``extra="forbid"``).
+
+Angles are degrees or DMS strings (``"22°30'"``); lengths are mm. Each field carries its unit in
+``json_schema_extra={"unit": ...}`` so that error messages can name it.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal, Optional
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
+
+from .angles import parse_angle_deg
+
+__all__ = ["Angle", "GearSetSpec", "DepthSpec", "FlankSpec", "ManufacturingSpec", "OutputSpec", "DesignFile"]
+
+Angle = Annotated[float, BeforeValidator(parse_angle_deg)]
+
+
+def _f(default=..., unit: str = "-", **kw):
+    return Field(default, json_schema_extra={"unit": unit}, **kw)
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True, validate_default=True)
+
+
+class DepthSpec(_Model):
+    """Depthwise proportions and taper (ISO 23509 Method 0)."""
+
+    taper: Literal["given", "standard", "uniform", "duplex"] = _f("duplex", description="depthwise taper system")
+    mean_addendum_factor: Optional[float] = _f(None, ge=0.0, le=1.0, description="c_ham; default 0.21 + 0.29/u^2")
+    depth_factor: float = _f(2.0, gt=0.0, le=4.0, description="k_d, mean working depth / mean normal module")
+    clearance_factor: float = _f(0.125, ge=0.0, le=1.0, description="k_c")
+    thickness_factor: float = _f(0.0, ge=-0.5, le=0.5, description="k_t")
+    dedendum_angles: Optional[tuple[Angle, Angle]] = _f(
+        None, unit="deg", description="theta_f1, theta_f2 for taper = 'given' (uniform clearance)")
+    gear_addendum_dedendum_angles: Optional[tuple[Angle, Angle]] = _f(
+        None, unit="deg", description="theta_a2, theta_f2 for taper = 'given' (ISO data type II)")
+    backlash: float = _f(0.0, unit="mm", ge=0.0, le=2.0, description="outer normal backlash j_en")
+
+    @model_validator(mode="after")
+    def _given_angles(self):
+        if self.taper == "given" and self.dedendum_angles is None and self.gear_addendum_dedendum_angles is None:
+            raise ValueError(
+                "taper = 'given' needs dedendum_angles = [theta_f1, theta_f2] or "
+                "gear_addendum_dedendum_angles = [theta_a2, theta_f2] (deg)")
+        return self
+
+
+class GearSetSpec(_Model):
+    """Basic data of the gear set."""
+
+    pinion_teeth: int = _f(..., ge=5, le=200, description="z1")
+    gear_teeth: int = _f(..., ge=5, le=500, description="z2")
+    shaft_angle: Angle = _f(90.0, unit="deg", gt=10.0, lt=170.0, description="Sigma")
+    module: Optional[float] = _f(None, unit="mm", gt=0.0, le=100.0, description="outer transverse module m_et")
+    outer_pitch_diameter: Optional[float] = _f(None, unit="mm", gt=0.0, le=5000.0, description="d_e2 of the gear")
+    face_width: float = _f(..., unit="mm", gt=0.0, le=1000.0, description="b")
+    normal_pressure_angle: Angle = _f(20.0, unit="deg", gt=5.0, lt=45.0, description="alpha_n (drive side)")
+    coast_pressure_angle: Optional[Angle] = _f(None, unit="deg", gt=5.0, lt=45.0, description="alpha_n coast side")
+    mean_spiral_angle: Angle = _f(..., unit="deg", gt=0.0, lt=60.0, description="beta_m (magnitude)")
+    pinion_hand: Literal["RH", "LH"] = _f("RH", description="hand of spiral of the pinion; the gear is opposite")
+    cutter_radius: float = _f(114.3, unit="mm", gt=0.0, le=1000.0, description="r_c0 nominal cutter radius")
+    hypoid_offset: float = _f(0.0, unit="mm", description="a; only 0 is supported yet")
+    depth: DepthSpec = DepthSpec()
+
+    @model_validator(mode="after")
+    def _size(self):
+        if (self.module is None) == (self.outer_pitch_diameter is None):
+            raise ValueError("give exactly one of module (mm) or outer_pitch_diameter (mm)")
+        return self
+
+
+class FlankSpec(_Model):
+    """Which tooth flanks to build."""
+
+    kind: Literal["log-spiral", "face-milled"] = _f("log-spiral")
+
+
+class ManufacturingSpec(_Model):
+    """Manufacturability checks."""
+
+    die_direction: tuple[float, float, float] = _f((0.0, 0.0, 1.0), unit="-", description="forging die opening")
+    ball_radius: float = _f(2.0, unit="mm", gt=0.0, le=50.0, description="ball-end tool radius")
+    scallop_height: float = _f(0.005, unit="mm", gt=0.0, le=1.0, description="allowed scallop height")
+
+
+class OutputSpec(_Model):
+    """What to compute and export."""
+
+    grid: tuple[int, int] = _f((31, 15), description="face x profile grid per flank")
+    plots: bool = True
+    stl: bool = True
+    step: bool = False
+    toolpaths: bool = True
+    draft: bool = True
+
+
+class DesignFile(_Model):
+    """A whole spiralbevel design file."""
+
+    title: str = _f("spiral bevel gear set")
+    gear_set: GearSetSpec
+    flank: FlankSpec = FlankSpec()
+    manufacturing: ManufacturingSpec = ManufacturingSpec()
+    output: OutputSpec = OutputSpec()

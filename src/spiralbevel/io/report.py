@@ -1,0 +1,51 @@
+"""``report.json``: every computed quantity with units, written atomically.
+
+Values are plain JSON: floats, lists, dicts. Each section may carry a ``"units"`` mapping from key to unit string.
+numpy scalars and arrays are converted; NaN and infinities are refused (a report never carries a silent NaN).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["to_jsonable", "dumps_report", "write_report"]
+
+
+def to_jsonable(obj):
+    """Convert numpy types, tuples, enums and dataclass-like objects into JSON-ready Python objects."""
+    if isinstance(obj, dict):
+        return {str(k): to_jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [to_jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return to_jsonable(obj.tolist())
+    if isinstance(obj, (np.floating, float)):
+        value = float(obj)
+        if not math.isfinite(value):
+            raise ValueError("report value is not finite")
+        return value
+    if isinstance(obj, (np.integer,)):
+        return int(obj)
+    if isinstance(obj, (np.bool_,)):
+        return bool(obj)
+    if hasattr(obj, "value") and hasattr(obj, "name") and not isinstance(obj, (str, int)):
+        return obj.value  # Enum
+    if isinstance(obj, Path):
+        return str(obj)
+    return obj
+
+
+def dumps_report(report: dict) -> str:
+    """Serialize a report dict to indented JSON text."""
+    return json.dumps(to_jsonable(report), indent=2, ensure_ascii=False, allow_nan=False) + "\n"
+
+
+def write_report(path, report: dict) -> None:
+    """Write ``report`` to ``path`` atomically (whole or not at all)."""
+    from .atomic import atomic_write_text
+
+    atomic_write_text(path, dumps_report(report))

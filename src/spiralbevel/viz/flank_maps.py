@@ -1,0 +1,59 @@
+"""Maps of scalar fields over tooth flanks drawn on the projected tooth (axial position vs radius)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def projected(points):
+    """Axial position z and radius from the axis of member-frame points (..., 3), mm."""
+    points = np.asarray(points, float)
+    return points[..., 2], np.hypot(points[..., 0], points[..., 1])
+
+
+def plot_flank_fields(panels, title="", cmap="coolwarm", symmetric=True):
+    """Draw one or more scalar fields on projected flanks.
+
+    Parameters
+    ----------
+    panels : list of (label : str, points : (n, m, 3) float mm, values : (n, m) float, unit : str)
+        One subplot each.
+    title : str
+        Figure title.
+    symmetric : bool
+        Colour scale symmetric about 0 (for signed curvatures).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    n = len(panels)
+    cols = min(n, 4)
+    rows = int(np.ceil(n / cols))
+    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.6 * rows), squeeze=False)
+    for ax, (label, pts, vals, unit) in zip(axes.flat, panels):
+        z, r = projected(pts)
+        vals = np.asarray(vals, float)
+        vmax = np.nanmax(np.abs(vals)) if symmetric else None
+        kw = dict(vmin=-vmax, vmax=vmax) if symmetric and vmax > 0 else {}
+        mesh = ax.pcolormesh(z, r, vals, shading="gouraud", cmap=cmap, **kw)
+        _outline(ax, z, r)
+        ax.set_title(label, fontsize=9)
+        ax.set_xlabel("axial position z [mm]")
+        ax.set_ylabel("radius [mm]")
+        ax.set_aspect("equal", adjustable="datalim")
+        fig.colorbar(mesh, ax=ax, label=unit, shrink=0.85)
+    for ax in list(axes.flat)[n:]:
+        ax.set_visible(False)
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    return fig
+
+
+def _outline(ax, z, r):
+    """Toe, heel, root and top lines of a projected flank grid."""
+    for zz, rr in ((z[0], r[0]), (z[-1], r[-1]), (z[:, 0], r[:, 0]), (z[:, -1], r[:, -1])):
+        ax.plot(zz, rr, color="k", lw=0.8)
