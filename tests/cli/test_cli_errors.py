@@ -1,0 +1,39 @@
+"""CLI: bad input exits with code 2 and lists every problem without a traceback."""
+
+from typer.testing import CliRunner
+
+from spiralbevel.cli import app
+
+runner = CliRunner()
+
+
+def test_check_default_ok():
+    result = runner.invoke(app, ["check"])
+    assert result.exit_code == 0, result.output
+    assert "ok" in result.output
+
+
+def test_bad_design_exit_2_lists_problems(tmp_path):
+    f = tmp_path / "bad.toml"
+    f.write_text("[gear_set]\npinion_teeth = -4\ngear_teeth = 65\nmodule = 3.9\nface_width = 37\n"
+                 "mean_spiral_angle = 90\nunknown = 1\n")
+    result = runner.invoke(app, ["check", str(f)])
+    assert result.exit_code == 2
+    out = result.output
+    assert "gear_set.pinion_teeth = -4" in out
+    assert "gear_set.mean_spiral_angle = 90.0 deg" in out and "< 60.0 deg" in out
+    assert "gear_set.unknown" in out
+    assert "Traceback" not in out
+
+
+def test_malformed_toml_exit_2(tmp_path):
+    f = tmp_path / "bad.toml"
+    f.write_text("[gear_set\n")
+    result = runner.invoke(app, ["check", str(f)])
+    assert result.exit_code == 2 and "malformed TOML" in result.output
+
+
+def test_missing_file_exit_2(tmp_path):
+    result = runner.invoke(app, ["run", str(tmp_path / "missing.toml"), "-o", str(tmp_path / "o")])
+    assert result.exit_code == 2 and "file not found" in result.output
+    assert not (tmp_path / "o").exists()
