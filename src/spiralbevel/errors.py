@@ -52,6 +52,8 @@ class Problem:
     reason: str = ""
 
     def __str__(self) -> str:
+        if not self.field:
+            return self.reason
         unit = f" {self.unit}" if self.unit and self.unit != "-" else ""
         text = f"{self.field} = {self.value!r}{unit}"
         if self.allowed:
@@ -70,7 +72,7 @@ class DesignError(SpiralBevelError, ValueError):
 
     def __init__(self, problems: "list[Problem] | Problem | str"):
         if isinstance(problems, str):
-            problems = [Problem(field="design", value="-", reason=problems)]
+            problems = [Problem(field="", value=None, reason=problems)]
         elif isinstance(problems, Problem):
             problems = [problems]
         self.problems: list[Problem] = list(problems)
