@@ -1,0 +1,155 @@
+"""Plausibility checks of a computed blank: impossible geometry (errors) and poor practice (warnings).
+
+Criteria (all evaluated on the computed :class:`~spiralbevel.design.blank_result.BevelBlank`):
+
+* **Face width** (warning): b2 > 0.3·Re2 or b2 > 10·met (ISO 23509 / AGMA design recommendation).
+* **Dedendum / addendum** (error): a dedendum that is not positive at toe, mean point or heel, or a mean addendum
+  that is negative; an addendum that vanishes at the toe; a root angle δf <= 0.
+* **Pointed teeth**: the normal top land at the mean point (virtual spur gear in the normal section) must be positive
+  (error); at the toe or heel, or below 0.2·m_n of the section anywhere, it is a warning. The toe and heel top lands
+  are estimates: the transverse thickness is scaled with the cone distance (teeth converging to the apex).
+* **Undercut of the pinion**: virtual spur gear in the normal section (dvn, ISO 10300-1); a straight rack flank
+  generates involute only down to h_lim = (dvn/2)·sin²αn (αn the smaller flank angle) below the pitch line.
+  Error if the depth that must be active at the mean point, ham2 (the wheel's tip reaches it), exceeds h_lim;
+  warning if the full mean dedendum hfm1 exceeds it (root undercut) or if the active depth exceeds it at the toe.
+* **Toe depth** (warning): whole depth at the toe below half the mean whole depth (steep taper, small cutter).
+* **Spiral angle** (warning): the toe spiral angle changes sign while βm > 0 (cutter radius small for the face).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..errors import Problem
+from .blank_result import BevelBlank
+from .blank_thickness import tip_thickness, undercut_limit_depth, virtual_normal_diameter
+
+__all__ = ["check_blank", "top_land", "section_limit_depth"]
+
+_MEMBER = {1: "pinion", 2: "wheel"}
+_MIN_TOPLAND = 0.2  # fraction of the normal module of the section
+
+
+def _g(bl: BevelBlank, name: str, k: int):
+    return getattr(bl, f"{name}{k}")
+
+
+def _section(bl: BevelBlank, k: int, where: str) -> tuple[float, float, float, float]:
+    """Cone distance, spiral angle, addendum and dedendum of member k at 'i' (toe), 'm' or 'e' (heel)."""
+    if where == "m":
+        return bl.Rm, _g(bl, "beta_m", k), _g(bl, "ham", k), _g(bl, "hfm", k)
+    return (_g(bl, f"R{where}", k), _g(bl, f"beta_{where}", k), _g(bl, f"ha{where}", k), _g(bl, f"hf{where}", k))
+
+
+def _cos2_alpha(bl: BevelBlank) -> float:
+    return math.cos(0.5 * (bl.alpha_nD + bl.alpha_nC)) ** 2
+
+
+def top_land(bl: BevelBlank, k: int, where: str) -> float:
+    """Normal top land width of member ``k`` (1, 2) at ``where`` = 'i' (toe), 'm' (mean) or 'e' (heel), mm.
+
+    Tip thickness of the virtual spur gear in the normal section (see ``blank_thickness.tip_thickness``); the
+    transverse circular thickness at cone distance R is smt·R/Rm.
+    """
+    r, beta, ha, _hf = _section(bl, k, where)
+    delta = _g(bl, "delta", k)
+    snx = _g(bl, "smt", k) * r / bl.Rm * math.cos(beta)
+    dvn = virtual_normal_diameter(r, delta, beta, _cos2_alpha(bl))
+    return tip_thickness(dvn, snx, ha, bl.alpha_nD, bl.alpha_nC)
+
+
+def section_limit_depth(bl: BevelBlank, k: int, where: str) -> float:
+    """Undercut limit depth (dvn/2)·sin²αn,min of member ``k`` at section ``where``, mm."""
+    r, beta, _ha, _hf = _section(bl, k, where)
+    dvn = virtual_normal_diameter(r, _g(bl, "delta", k), beta, _cos2_alpha(bl))
+    return undercut_limit_depth(dvn, min(bl.alpha_nD, bl.alpha_nC))
+
+
+def check_blank(bl: BevelBlank) -> tuple[list[Problem], list[str]]:
+    """Run every check.
+
+    Parameters
+    ----------
+    bl : BevelBlank
+        Computed blank (its ``warnings`` are ignored).
+
+    Returns
+    -------
+    errors : list of Problem
+        Impossible geometry; :func:`compute_blank` raises them as one ``GeometryError``.
+    warnings : list of str
+        Messages for :class:`~spiralbevel.errors.DesignWarning`.
+    """
+    err: list[Problem] = []
+    warn: list[str] = []
+
+    if bl.b2 > 0.3 * bl.Re2:
+        warn.append(f"face width b2 = {bl.b2:.4g} mm exceeds 0.3*Re2 = {0.3 * bl.Re2:.4g} mm")
+    if bl.b2 > 10.0 * bl.met:
+        warn.append(f"face width b2 = {bl.b2:.4g} mm exceeds 10*met = {10.0 * bl.met:.4g} mm")
+
+    for k in (1, 2):
+        m = _MEMBER[k]
+        for where, label in (("i", "toe"), ("m", "mean point"), ("e", "heel")):
+            _r, _b, ha, hf = _section(bl, k, where)
+            sym = "hfm" if where == "m" else f"hf{where}"
+            if not hf > 0.0:
+                err.append(Problem(f"{sym}{k}", round(hf, 6), "> 0", "mm",
+                                   f"vanishing dedendum at the {label} of the {m}: reduce the dedendum angles "
+                                   "(taper), the face width or the clearance"))
+            if where == "m" and not ha >= 0.0:
+                err.append(Problem(f"ham{k}", round(ha, 6), ">= 0", "mm", f"negative mean addendum of the {m}: "
+                                   "check c_ham and k_d"))
+            if where == "i" and not ha > 0.0:
+                err.append(Problem(f"hai{k}", round(ha, 6), "> 0", "mm",
+                                   f"vanishing addendum at the toe of the {m}: reduce the addendum angle "
+                                   "(taper) or the face width"))
+        df = _g(bl, "delta_f", k)
+        if not df > 0.0:
+            err.append(Problem(f"delta_f{k}", f"{math.degrees(df):.6g}", "> 0", "deg",
+                               f"root angle of the {m} is not positive: dedendum angle larger than the pitch angle"))
+
+    if err:  # the remaining checks need sound depths
+        return err, warn
+
+    for k in (1, 2):
+        m = _MEMBER[k]
+        for where, label in (("i", "toe"), ("m", "mean point"), ("e", "heel")):
+            r, beta, _ha, _hf = _section(bl, k, where)
+            sa = top_land(bl, k, where)
+            mxn = bl.mmt * r / bl.Rm * math.cos(beta)
+            sym = f"sa{where}{k}"
+            if not sa > 0.0:
+                if where == "m":
+                    err.append(Problem(sym, round(sa, 6), "> 0", "mm", f"pointed teeth: the {m} flanks meet below "
+                                       "the tip at the mean point; reduce the addendum or increase the thickness"))
+                else:
+                    warn.append(f"pointed teeth: top land of the {m} at the {label} {sym} = {sa:.4g} mm <= 0")
+            elif sa < _MIN_TOPLAND * mxn:
+                warn.append(f"small top land of the {m} at the {label}: {sym} = {sa:.4g} mm < "
+                            f"{_MIN_TOPLAND}*m_n = {_MIN_TOPLAND * mxn:.4g} mm")
+
+    # undercut of the pinion (criterion in the module docstring)
+    hlim_m = section_limit_depth(bl, 1, "m")
+    if bl.ham2 > hlim_m:
+        err.append(Problem("hlim1", round(hlim_m, 6), f">= ham2 = {bl.ham2:.6g}", "mm",
+                           "pinion undercut: the active flank at the mean point reaches below the interference "
+                           "point (dvn1/2)*sin^2(alpha_n); increase z1, the pressure angle or the pinion addendum"))
+    elif bl.hfm1 > hlim_m:
+        warn.append(f"pinion root undercut at the mean point: hfm1 = {bl.hfm1:.4g} mm > limit depth "
+                    f"(dvn1/2)*sin^2(alpha_n) = {hlim_m:.4g} mm")
+    hlim_i = section_limit_depth(bl, 1, "i")
+    active_i = bl.hfi1 - bl.c
+    if active_i > hlim_i:
+        warn.append(f"pinion undercut at the toe: active depth hfi1 - c = {active_i:.4g} mm > limit depth "
+                    f"{hlim_i:.4g} mm")
+
+    for k in (1, 2):
+        hi = _g(bl, "hi", k)
+        if hi < 0.5 * bl.hm:
+            warn.append(f"whole depth of the {_MEMBER[k]} at the toe hi{k} = {hi:.4g} mm is less than half the mean "
+                        f"whole depth hm = {bl.hm:.4g} mm (steep depthwise taper)")
+    if bl.beta_m1 > 0.0 and bl.beta_i1 < 0.0:
+        warn.append(f"the toe spiral angle changes sign (beta_i = {math.degrees(bl.beta_i1):.4g} deg): cutter radius "
+                    f"rc0 = {bl.rc0:.4g} mm is small for this face width")
+    return err, warn

@@ -1,0 +1,142 @@
+"""Depthwise taper of a spiral bevel pair without offset: addendum and dedendum angles (ISO 23509 Method 0).
+
+All four taper systems use uniform clearance, θa1 = θf2 and θa2 = θf1: the face cone of each member is parallel to
+the root cone of its mate (ISO 23509:2016, dedendum and addendum angles, a = 0).
+
+References
+----------
+ISO 23509:2016, dedendum angle sums ΣθfS (standard), ΣθfC (duplex, face milling, completing), ΣθfU = 0 (uniform);
+Annex F.2 Sample 1 (reproduced in reference/iso23509-sample1.md).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+__all__ = ["TaperAngles", "dedendum_angle_sum_standard", "dedendum_angle_sum_duplex", "taper_angles"]
+
+
+@dataclass(frozen=True)
+class TaperAngles:
+    """Addendum and dedendum angles of both members, rad, plus the dedendum angle sums for reference.
+
+    Attributes
+    ----------
+    theta_a1, theta_a2, theta_f1, theta_f2 : float, rad
+        Addendum and dedendum angles.
+    sum_theta_fS : float, rad
+        Dedendum angle sum of the standard taper (computed for every taper, used by the checks).
+    sum_theta_fC : float, rad
+        Dedendum angle sum of the duplex taper for the given cutter radius.
+    """
+
+    theta_a1: float
+    theta_a2: float
+    theta_f1: float
+    theta_f2: float
+    sum_theta_fS: float
+    sum_theta_fC: float
+
+
+def dedendum_angle_sum_standard(hfm1: float, hfm2: float, rm: float) -> float:
+    """Dedendum angle sum of the standard depth taper (root lines through the pitch apex).
+
+    Parameters
+    ----------
+    hfm1, hfm2 : float, mm
+        Mean dedenda of pinion and wheel.
+    rm : float, mm
+        Mean cone distance.
+
+    Returns
+    -------
+    float, rad
+        ΣθfS = atan(hfm1/Rm) + atan(hfm2/Rm) (ISO 23509, standard taper, a = 0).
+    """
+    return math.atan(hfm1 / rm) + math.atan(hfm2 / rm)
+
+
+def dedendum_angle_sum_duplex(met: float, re: float, rm: float, beta_m: float, tan_alpha: float, rc0: float) -> float:
+    """Dedendum angle sum of the duplex taper (face milling, completing process).
+
+    Parameters
+    ----------
+    met : float, mm
+        Outer transverse module of the wheel.
+    re, rm : float, mm
+        Outer and mean cone distances of the wheel.
+    beta_m : float, rad
+        Mean spiral angle.
+    tan_alpha : float
+        Tangent of the normal pressure angle; for unequal flank angles the mean (tan αnD + tan αnC)/2, which is
+        exact for the slot-width argument behind the formula (the slot narrows by Δh·(tan αD + tan αC)).
+    rc0 : float, mm
+        Cutter radius.
+
+    Returns
+    -------
+    float, rad
+        ΣθfC = (π·met / (2·Re·tan αn·cos βm))·(1 − Rm·sin βm / rc0); in degrees the standard writes the factor
+        90 instead of π/2 (ISO 23509 duplex taper; reference/iso23509-sample1.md gives 8.6277° for Sample 1).
+    """
+    return (0.5 * math.pi * met / (re * tan_alpha * math.cos(beta_m))) * (1.0 - rm * math.sin(beta_m) / rc0)
+
+
+def taper_angles(
+    taper: str,
+    *,
+    hfm1: float,
+    hfm2: float,
+    rm: float,
+    re2: float,
+    met: float,
+    beta_m: float,
+    tan_alpha: float,
+    rc0: float,
+    c_ham: float,
+    given: dict[str, float | None] | None = None,
+) -> TaperAngles:
+    """Addendum and dedendum angles for a taper system (uniform clearance).
+
+    Parameters
+    ----------
+    taper : {"duplex", "standard", "uniform", "given"}
+        Taper system.
+    hfm1, hfm2 : float, mm
+        Mean dedenda.
+    rm, re2 : float, mm
+        Mean cone distance and outer cone distance of the wheel.
+    met : float, mm
+        Outer transverse module.
+    beta_m : float, rad
+        Mean spiral angle.
+    tan_alpha : float
+        Mean tangent of the normal pressure angles.
+    rc0 : float, mm
+        Cutter radius.
+    c_ham : float
+        Mean addendum factor; the duplex sum is split θf1 = c_ham·ΣθfC, θf2 = (1 − c_ham)·ΣθfC.
+    given : dict or None
+        ``theta_a1 .. theta_f2`` (rad or None) for ``taper="given"``; θf1 from θf1 or θa2, θf2 from θf2 or θa1.
+
+    Returns
+    -------
+    TaperAngles
+    """
+    s_std = dedendum_angle_sum_standard(hfm1, hfm2, rm)
+    s_dup = dedendum_angle_sum_duplex(met, re2, rm, beta_m, tan_alpha, rc0)
+    if taper == "standard":
+        tf1, tf2 = math.atan(hfm1 / rm), math.atan(hfm2 / rm)
+    elif taper == "uniform":
+        tf1 = tf2 = 0.0
+    elif taper == "duplex":
+        tf1, tf2 = c_ham * s_dup, (1.0 - c_ham) * s_dup
+    elif taper == "given":
+        g = given or {}
+        tf1 = g.get("theta_f1") if g.get("theta_f1") is not None else g.get("theta_a2")
+        tf2 = g.get("theta_f2") if g.get("theta_f2") is not None else g.get("theta_a1")
+        tf1, tf2 = float(tf1), float(tf2)
+    else:  # pragma: no cover - BlankInput validates the name
+        raise ValueError(taper)
+    return TaperAngles(theta_a1=tf2, theta_a2=tf1, theta_f1=tf1, theta_f2=tf2, sum_theta_fS=s_std, sum_theta_fC=s_dup)

@@ -1,0 +1,210 @@
+"""Closed forms of the blank checked by independent constructions (plane geometry, numerical root finding)."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from spiralbevel.design.blank import compute_blank
+from spiralbevel.design.blank_checks import top_land
+from spiralbevel.design.blank_input import BlankInput
+from spiralbevel.design.blank_thickness import (
+    chordal_values,
+    spiral_angle_at,
+    tip_thickness,
+    undercut_limit_depth,
+)
+from spiralbevel.errors import GeometryError
+
+R = math.radians
+SAMPLE1 = dict(z1=14, z2=39, de2=176.893, b=25.4, beta_m=R(35.0), rc0=114.3, c_ham=0.24737, k_t=0.0915, jen=0.127)
+
+
+def _blank(**kw):
+    return compute_blank(BlankInput(**{**SAMPLE1, **kw}))
+
+
+# ---------------------------------------------------------------- spiral angle of the circular tooth trace
+def _spiral_angle_by_construction(r, rm, beta_m, rc0):
+    """Crown-plane construction: circle of radius rc0 through P = (Rm, 0) whose tangent at P makes beta_m with the
+    radius; intersect with the circle |x| = r by root finding; measure the tangent/radius angle there."""
+    t_p = np.array([math.cos(beta_m), math.sin(beta_m)])  # tangent at P
+    n_p = np.array([-t_p[1], t_p[0]])  # toward the cutter centre
+    centre = np.array([rm, 0.0]) + rc0 * n_p
+    phi_p = math.atan2(-centre[1], rm - centre[0])  # polar angle of P seen from the centre
+
+    def point(phi):
+        return centre + rc0 * np.array([math.cos(phi), math.sin(phi)])
+
+    # walk from P along +t_p (|x| grows) for the heel, along -t_p for the toe; first crossing of |x| = r
+    ccw = np.array([-math.sin(phi_p), math.cos(phi_p)])  # d(point)/d(phi) direction at P
+    sgn = (1.0 if np.dot(ccw, t_p) > 0 else -1.0) * (1.0 if r > rm else -1.0)
+    f = lambda d: np.linalg.norm(point(phi_p + sgn * d)) - r  # noqa: E731
+    grid = np.linspace(0.0, math.pi, 2001)
+    vals = np.array([f(d) for d in grid])
+    i = int(np.nonzero(np.sign(vals[1:]) != np.sign(vals[0]))[0][0])
+    d = brentq(f, grid[i], grid[i + 1], xtol=1e-15)
+    phi = phi_p + sgn * d
+    x = point(phi)
+    tangent = np.array([-math.sin(phi), math.cos(phi)])
+    cosang = abs(np.dot(tangent, x / np.linalg.norm(x)))
+    return math.asin(math.sqrt(max(0.0, 1 - cosang**2)))
+
+
+@pytest.mark.parametrize("r,rm,beta,rc0", [(93.97, 81.27, R(35), 114.3), (68.57, 81.27, R(35), 114.3),
+                                           (134.45, 115.95, R(30), 114.3), (97.45, 115.95, R(30), 114.3),
+                                           (60.0, 50.0, R(20), 40.0)])
+def test_spiral_angle_formula_equals_circle_construction(r, rm, beta, rc0):
+    assert spiral_angle_at(r, rm, beta, rc0) == pytest.approx(_spiral_angle_by_construction(r, rm, beta, rc0),
+                                                              abs=1e-10)
+
+
+def test_rc0_bound_for_the_heel_is_sharp():
+    bl = _blank()
+    rm, re, sb = bl.Rm, bl.Re2, math.sin(bl.beta_m2)
+    lim = (re * re - rm * rm) / (2 * (re - rm * sb))
+    assert spiral_angle_at(re, rm, bl.beta_m2, lim * (1 + 1e-9)) is not None
+    assert spiral_angle_at(re, rm, bl.beta_m2, lim * (1 - 1e-6)) is None
+    with pytest.raises(GeometryError, match="rc0"):
+        _blank(rc0=lim * 0.99, taper="uniform")
+
+
+# ---------------------------------------------------------------- cones in the axial plane
+@pytest.mark.parametrize("taper", ["duplex", "standard", "uniform"])
+@pytest.mark.parametrize("k", [1, 2])
+def test_face_and_root_cone_lines_by_plane_geometry(taper, k):
+    """Heel and toe tip/root points built in the axial plane (z along the axis from the apex, r radial): the lines
+    through them must have the face/root angles, cut the axis at -tzF / -tzR, and give dae/2, dai/2 and txo."""
+    bl = _blank(taper=taper)
+    g = lambda n: getattr(bl, f"{n}{k}")  # noqa: E731
+    delta = g("delta")
+    pitch = np.array([math.cos(delta), math.sin(delta)])  # (z, r) unit vector of the pitch generator
+    normal = np.array([-math.sin(delta), math.cos(delta)])  # outward (toward the tips)
+    tip_e, tip_i = g("Re") * pitch + g("hae") * normal, g("Ri") * pitch + g("hai") * normal
+    root_e, root_i = g("Re") * pitch - g("hfe") * normal, g("Ri") * pitch - g("hfi") * normal
+    for p_e, p_i, ang, apex in ((tip_e, tip_i, g("delta_a"), -g("tzF")), (root_e, root_i, g("delta_f"), -g("tzR"))):
+        d = p_e - p_i
+        assert math.atan2(d[1], d[0]) == pytest.approx(ang, abs=1e-12)
+        z_axis = p_e[0] - p_e[1] * d[0] / d[1]  # where the line meets r = 0
+        assert z_axis == pytest.approx(apex, abs=1e-9)
+    assert 2 * tip_e[1] == pytest.approx(g("dae"), abs=1e-9)
+    assert 2 * tip_i[1] == pytest.approx(g("dai"), abs=1e-9)
+    assert tip_e[0] == pytest.approx(g("txo"), abs=1e-9)
+    assert tip_i[0] == pytest.approx(g("txi"), abs=1e-9)
+
+
+def test_standard_taper_root_lines_pass_through_the_pitch_apex():
+    bl = _blank(taper="standard")
+    assert bl.tzR1 == pytest.approx(0.0, abs=1e-12) and bl.tzR2 == pytest.approx(0.0, abs=1e-12)
+
+
+def test_uniform_taper_has_constant_depth():
+    bl = _blank(taper="uniform")
+    for k in (1, 2):
+        for name in ("ha", "hf"):
+            m = getattr(bl, f"{name}m{k}")
+            assert getattr(bl, f"{name}e{k}") == pytest.approx(m, abs=1e-12)
+            assert getattr(bl, f"{name}i{k}") == pytest.approx(m, abs=1e-12)
+
+
+@pytest.mark.parametrize("taper", ["duplex", "standard", "uniform"])
+def test_uniform_clearance_along_the_face(taper):
+    bl = _blank(taper=taper)
+    for end in ("e", "i"):
+        assert getattr(bl, f"hf{end}2") - getattr(bl, f"ha{end}1") == pytest.approx(bl.c, abs=1e-12)
+        assert getattr(bl, f"hf{end}1") - getattr(bl, f"ha{end}2") == pytest.approx(bl.c, abs=1e-12)
+
+
+# ---------------------------------------------------------------- virtual spur gear: tip thickness, chord, undercut
+def _involute_tip_thickness(d, s, ha, a_d, a_c):
+    """Both flanks drawn as explicit involutes (parameter = roll angle), cut with the tip circle by brentq."""
+    r, ra = d / 2, d / 2 + ha
+
+    def flank_polar_angle(alpha):
+        rb = r * math.cos(alpha)
+        # the flank crosses the reference circle at polar angle s/(2r) from the tooth centre
+        t_ref = math.tan(alpha)
+
+        def xy(t):
+            return rb * np.array([math.cos(t) + t * math.sin(t), math.sin(t) - t * math.cos(t)])
+
+        t_tip = brentq(lambda t: np.linalg.norm(xy(t)) - ra, 0.0, 3.0, xtol=1e-15)
+        ang = lambda t: math.atan2(xy(t)[1], xy(t)[0])  # noqa: E731
+        return s / (2 * r) + ang(t_ref) - ang(t_tip)  # half-angle of the tooth at the tip
+
+    return ra * (flank_polar_angle(a_d) + flank_polar_angle(a_c))
+
+
+@pytest.mark.parametrize("d,s,ha,a_d,a_c", [(82.24, 6.7575, 4.8369, R(20), R(20)), (50.0, 5.0, 3.0, R(22.5), R(17.5)),
+                                            (30.0, 4.8, 3.2, R(20), R(20))])
+def test_tip_thickness_equals_explicit_involutes(d, s, ha, a_d, a_c):
+    assert tip_thickness(d, s, ha, a_d, a_c) == pytest.approx(_involute_tip_thickness(d, s, ha, a_d, a_c), abs=1e-9)
+
+
+def test_tip_thickness_tends_to_the_rack_value():
+    s, ha, a = 5.0, 3.0, R(20)
+    rack = s - 2 * ha * math.tan(a)
+    assert tip_thickness(1e7, s, ha, a, a) == pytest.approx(rack, abs=1e-5)
+    assert tip_thickness(math.inf, s, ha, a, a) == pytest.approx(rack, abs=1e-15)
+
+
+def test_chordal_values_by_coordinates():
+    smn, ham, dvn = 6.7575, 4.8369, 82.241
+    half = smn / dvn  # half angle subtended by the arc thickness
+    p = 0.5 * dvn * np.array([math.sin(half), math.cos(half)])
+    q = 0.5 * dvn * np.array([-math.sin(half), math.cos(half)])
+    smnc, hamc = chordal_values(smn, ham, dvn)
+    assert smnc == pytest.approx(np.linalg.norm(p - q), abs=1e-12)
+    assert hamc == pytest.approx(0.5 * dvn + ham - p[1], abs=1e-12)  # tip circle to chord
+
+
+def test_undercut_limit_is_the_interference_point_depth():
+    """Pitch point P on the reference circle, line of action through P at the pressure angle; its tangency point T
+    with the base circle is the interference point; its depth below the rack pitch line is r·sin²α."""
+    r, alpha = 41.1, R(20)
+    centre = np.array([0.0, 0.0])
+    pitch_point = np.array([0.0, r])
+    direction = np.array([math.cos(alpha), -math.sin(alpha)])  # line of action
+    t = np.dot(centre - pitch_point, direction)
+    tangency = pitch_point + t * direction
+    assert np.linalg.norm(tangency - centre) == pytest.approx(r * math.cos(alpha), rel=1e-12)  # base circle
+    assert r - tangency[1] == pytest.approx(undercut_limit_depth(2 * r, alpha), rel=1e-12)
+
+
+def test_mean_top_land_uses_the_mean_thickness():
+    bl = _blank()
+    for k in (1, 2):
+        direct = tip_thickness(getattr(bl, f"dvn{k}"), getattr(bl, f"smn{k}"), getattr(bl, f"ham{k}"),
+                               bl.alpha_nD, bl.alpha_nC)
+        assert top_land(bl, k, "m") == pytest.approx(direct, abs=1e-12)
+        assert getattr(bl, f"sam{k}") == pytest.approx(direct, abs=1e-12)
+
+
+# ---------------------------------------------------------------- thickness and backlash
+def test_thickness_and_backlash_balance():
+    bl = _blank()
+    removed = bl.jet * bl.Rm / bl.Re2 * math.cos(bl.beta_m1)  # mean normal circular thickness removed
+    assert bl.smn1 + bl.smn2 == pytest.approx(math.pi * bl.mmn - removed, abs=1e-12)
+    assert bl.jen == pytest.approx(bl.jet * math.cos(bl.beta_e2) * math.cos(bl.alpha_e), abs=1e-15)
+    # no backlash, no thickness factor: the rack rule s1 - s2 = 2 * x_hm1 * mmn * (tan aD + tan aC)
+    nb = _blank(jen=None, k_t=0.0)
+    assert nb.smn1 - nb.smn2 == pytest.approx(4 * nb.x_hm1 * nb.mmn * math.tan(R(20)), abs=1e-12)
+
+
+def test_backlash_given_as_jet_or_jen_is_the_same():
+    a = _blank()
+    b = _blank(jen=None, jet=a.jet)
+    assert b.jen == pytest.approx(a.jen, rel=1e-14)
+    assert b.smn1 == pytest.approx(a.smn1, rel=1e-14)
+
+
+def test_crown_wheel_limit_is_continuous():
+    """delta2 = 90 deg exactly (Σ = acos(-z1/z2)): the virtual gear of the wheel is a rack; top lands and chordal
+    values must be the limits of the values just below 90 deg."""
+    kw = dict(z1=20, z2=40, met=3.0, b=15.0, beta_m=R(30), rc0=60.0, taper="duplex")
+    crown = compute_blank(BlankInput(**kw, shaft_angle=math.acos(-0.5)))
+    near = compute_blank(BlankInput(**kw, shaft_angle=math.acos(-0.5) - 1e-7))
+    assert crown.delta2 == pytest.approx(math.pi / 2, abs=1e-15) and crown.dvn2 == math.inf
+    for name in ("sam2", "sai2", "sae2", "smnc2", "hamc2", "smn2", "hae2", "tzR2"):
+        assert getattr(crown, name) == pytest.approx(getattr(near, name), abs=1e-5), name
