@@ -89,11 +89,13 @@ class DesignedFlank:
         return self.surface.evaluate(varphi, phi).rotated(self.rotation)
 
     def grid(self, n_phi: int = 11, n_psi: int = 7) -> FlankGeometry:
-        """Geometry on an (n_phi, n_psi) grid of the domain: rows from toe to heel (for either hand), columns from
-        psi_min to psi_max."""
+        """Geometry on an (n_phi, n_psi) grid of the domain: rows from toe to heel, columns from root to top (|psi|
+        increasing), for either hand and side — the grid convention of every flank in spiralbevel."""
         varphi, phi = self.domain.grid(n_phi, n_psi)
         if self.surface.spiral_angle < 0:  # rho decreases with phi: phi_min is the heel
             varphi, phi = varphi[::-1], phi[::-1]
+        if self.domain.psi_max <= 0:  # psi < 0: psi_min is the top
+            varphi, phi = varphi[:, ::-1], phi[:, ::-1]
         return self.evaluate(varphi, phi)
 
     def pitch_parameters(self, psi_pitch: float, cone_distance: float):

@@ -39,7 +39,8 @@ class ParallelogramDomain:
     def grid(self, n_phi: int, n_psi: int):
         """Parameter grid, shape (n_phi, n_psi): returns ``(varphi, phi)`` arrays in rad.
 
-        Rows run from toe (phi_min) to heel (phi_max); columns run from psi_min to psi_max.
+        Rows run from phi_min to phi_max (toe to heel when beta > 0, heel to toe when beta < 0;
+        ``DesignedFlank.grid`` always orders toe to heel); columns run from psi_min to psi_max.
         """
         phi = np.linspace(self.phi_min, self.phi_max, n_phi)[:, None]
         psi = np.linspace(self.psi_min, self.psi_max, n_psi)[None, :]

@@ -1,0 +1,75 @@
+"""Design file → ISO 23509 blank. Problems are reported with design-file field paths."""
+
+from __future__ import annotations
+
+import math
+
+from ..conventions import Hand
+from ..errors import DesignError, Problem
+from ..io.design_schema import DesignFile
+
+# BlankInput field -> design-file path
+FIELD_PATHS = {
+    "z1": "gear_set.pinion_teeth",
+    "z2": "gear_set.gear_teeth",
+    "b": "gear_set.face_width",
+    "beta_m": "gear_set.mean_spiral_angle",
+    "rc0": "gear_set.cutter_radius",
+    "hand1": "gear_set.pinion_hand",
+    "shaft_angle": "gear_set.shaft_angle",
+    "de2": "gear_set.outer_pitch_diameter",
+    "met": "gear_set.module",
+    "alpha_dD": "gear_set.normal_pressure_angle",
+    "alpha_dC": "gear_set.coast_pressure_angle",
+    "c_ham": "gear_set.depth.mean_addendum_factor",
+    "k_d": "gear_set.depth.depth_factor",
+    "k_c": "gear_set.depth.clearance_factor",
+    "k_t": "gear_set.depth.thickness_factor",
+    "jen": "gear_set.depth.backlash",
+    "taper": "gear_set.depth.taper",
+    "theta_f1": "gear_set.depth.dedendum_angles[0]",
+    "theta_f2": "gear_set.depth.dedendum_angles[1]",
+    "theta_a2": "gear_set.depth.gear_addendum_dedendum_angles[0]",
+    "a": "gear_set.hypoid_offset",
+}
+
+
+def blank_input_from_design(spec: DesignFile):
+    """Build the :class:`~spiralbevel.design.blank_input.BlankInput` of a design file."""
+    from ..design.blank_input import BlankInput
+
+    g, d = spec.gear_set, spec.gear_set.depth
+    r = math.radians
+    kw = dict(
+        z1=g.pinion_teeth, z2=g.gear_teeth, b=g.face_width, beta_m=r(g.mean_spiral_angle), rc0=g.cutter_radius,
+        hand1=Hand(g.pinion_hand), shaft_angle=r(g.shaft_angle), de2=g.outer_pitch_diameter, met=g.module,
+        alpha_dD=r(g.normal_pressure_angle),
+        alpha_dC=r(g.coast_pressure_angle if g.coast_pressure_angle is not None else g.normal_pressure_angle),
+        c_ham=d.mean_addendum_factor, k_d=d.depth_factor, k_c=d.clearance_factor, k_t=d.thickness_factor,
+        jen=d.backlash if d.backlash > 0 else None, taper=d.taper, a=g.hypoid_offset,
+    )
+    if d.taper == "given":
+        if d.dedendum_angles is not None:
+            kw.update(theta_f1=r(d.dedendum_angles[0]), theta_f2=r(d.dedendum_angles[1]))
+        else:
+            kw.update(theta_a2=r(d.gear_addendum_dedendum_angles[0]), theta_f2=r(d.gear_addendum_dedendum_angles[1]))
+    try:
+        return BlankInput(**kw)
+    except DesignError as err:
+        raise _renamed(err) from err
+
+
+def blank_from_design(spec: DesignFile):
+    """Compute the ISO 23509 blank (:class:`~spiralbevel.design.blank_result.BevelBlank`) of a design file."""
+    from ..design.blank import compute_blank
+
+    inp = blank_input_from_design(spec)
+    try:
+        return compute_blank(inp)
+    except DesignError as err:
+        raise _renamed(err) from err
+
+
+def _renamed(err: DesignError) -> DesignError:
+    problems = [Problem(FIELD_PATHS.get(p.field, p.field), p.value, p.allowed, p.unit, p.reason) for p in err.problems]
+    return type(err)(problems)

@@ -1,0 +1,87 @@
+"""Log-spiral designs in the main job: pair from the blank, flank grids, report sections and output files."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..conventions import Hand, Member, Side
+from ..design.logspiral_pair import BlankBoundaries, design_logspiral_pair
+
+MEMBERS = (Member.PINION, Member.GEAR)
+SIDES = (Side.CONVEX, Side.CONCAVE)
+
+
+def boundaries_from_blank(blank):
+    """Per-member :class:`BlankBoundaries` from an ISO 23509 blank (root/face cones taken with apex at O)."""
+    return {
+        Member.PINION: BlankBoundaries(blank.Ri1, blank.Re1, blank.delta_f1, blank.delta_a1),
+        Member.GEAR: BlankBoundaries(blank.Ri2, blank.Re2, blank.delta_f2, blank.delta_a2),
+    }
+
+
+def design_pair(spec, blank):
+    """The :class:`~spiralbevel.design.logspiral_pair.LogSpiralPair` of a design file and its blank."""
+    g = spec.gear_set
+    return design_logspiral_pair(
+        g.pinion_teeth, g.gear_teeth, math.radians(g.shaft_angle), math.radians(g.normal_pressure_angle),
+        math.radians(g.mean_spiral_angle), Hand(g.pinion_hand), boundaries_from_blank(blank),
+        thickness=getattr(blank, "smn1", None),
+    )
+
+
+def flank_grids(pair, n_face: int, n_profile: int):
+    """Closed-form geometry on each flank grid, member frames: {(member, side): FlankGeometry}."""
+    return {(m, s): pair.flank(m, s).grid(n_face, n_profile) for m in MEMBERS for s in SIDES}
+
+
+def _deg(x):
+    return float(np.degrees(x))
+
+
+def flank_report(pair, grids):
+    """Report section ``logspiral``: pair recipe and, per member and side, the flank data (degrees, mm, 1/mm)."""
+    out = {
+        "transverse_pressure_angle_deg": _deg(pair.transverse_pressure_angle),
+        "plane_spiral_angle_deg": _deg(pair.plane_spiral_angle),
+        "members": {},
+        "units": {"curvature": "1/mm (convex = positive)", "length": "mm", "angle": "deg"},
+    }
+    for m in MEMBERS:
+        md = pair.member(m)
+        entry = {
+            "hand": md.hand.value,
+            "teeth": md.teeth,
+            "pitch_angle_deg": _deg(md.pitch_angle),
+            "base_cone_angle_deg": _deg(md.base_cone_angle),
+            "spiral_parameter_deg": _deg(md.spiral_parameter),
+            "psi_pitch_deg": _deg(md.psi_pitch),
+            "mean_cone_distance_mm": md.mean_cone_distance,
+            "mean_normal_thickness_mm": md.mean_normal_thickness,
+            "flanks": {},
+        }
+        for s in SIDES:
+            f = pair.flank(m, s)
+            g = grids[(m, s)]
+            mean = pair.mean_point(m, s)
+            d = f.domain
+            entry["flanks"][s.value] = {
+                "rho0_mm": f.surface.rho0,
+                "rotation_deg": _deg(f.rotation),
+                "domain": {"phi_min_rad": d.phi_min, "phi_max_rad": d.phi_max,
+                           "psi_min_rad": d.psi_min, "psi_max_rad": d.psi_max},
+                "mean_point": {
+                    "point_mm": mean.point, "normal": mean.normal,
+                    "k1_per_mm": float(mean.k1), "k2_per_mm": float(mean.k2),
+                },
+                "k1_range_per_mm": [float(g.k1.min()), float(g.k1.max())],
+                "k2_range_per_mm": [float(g.k2.min()), float(g.k2.max())],
+            }
+        out["members"][m.value] = entry
+    return out
+
+
+def tooth_grids(pair, grids, member):
+    """(convex, concave) point/normal tuples of one tooth of ``member`` in its member frame."""
+    return tuple((grids[(member, s)].point, grids[(member, s)].normal) for s in SIDES)

@@ -1,0 +1,89 @@
+"""Files of the main job: plots, STL, STEP, tool-path CSV. Each writer returns the names it wrote."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..conventions import Member, Side
+
+
+def save_figure(fig, path: Path) -> str:
+    """Save a matplotlib figure as PNG (150 dpi) and close it."""
+    import matplotlib.pyplot as plt
+
+    fig.savefig(path, dpi=150)
+    plt.close(fig)
+    return path.name
+
+
+def curvature_maps(grids, out: Path, title: str) -> str:
+    """PNG of k1 and k2 over every flank, drawn on the projected tooth."""
+    from ..viz.flank_maps import plot_flank_fields
+
+    panels = []
+    for (m, s), g in grids.items():
+        panels.append((f"{m.value} {s.value}: k1 (profile)", g.point, g.k1, "1/mm"))
+        panels.append((f"{m.value} {s.value}: k2 (lengthwise)", g.point, g.k2, "1/mm"))
+    return save_figure(plot_flank_fields(panels, title=title), out / "curvature_maps.png")
+
+
+def pitch_traces(grids, pitch_angles, out: Path) -> str:
+    """PNG of the tooth traces on the developed pitch cones."""
+    from ..viz.traces import pitch_cone_trace, plot_pitch_traces
+
+    traces = [(f"{m.value} {s.value}", pitch_cone_trace(g.point, pitch_angles[m]), pitch_angles[m])
+              for (m, s), g in grids.items()]
+    return save_figure(plot_pitch_traces(traces), out / "pitch_traces.png")
+
+
+def meshing_pair_3d(pair, grids, out: Path) -> str:
+    """PNG of a pinion tooth between two gear teeth, in the pair frame at zero roll."""
+    from .._core.rotations import rot_z
+    from ..viz.pair3d import plot_surfaces_3d
+
+    z2 = pair.gear.teeth
+    surfaces = []
+    for s, color in ((Side.CONVEX, "tab:blue"), (Side.CONCAVE, "tab:cyan")):
+        surfaces.append((f"pinion {s.value}", pair.to_pair_frame(Member.PINION, grids[(Member.PINION, s)].point),
+                         color))
+    for k, shade in ((0, ("tab:red", "tab:orange")), (-1, ("tab:red", "tab:orange"))):
+        R = rot_z(2 * math.pi * k / z2)
+        for s, color in zip((Side.CONVEX, Side.CONCAVE), shade):
+            pts = grids[(Member.GEAR, s)].point @ R.T
+            label = f"gear {s.value}" if k == 0 else None
+            surfaces.append((label or "", pair.to_pair_frame(Member.GEAR, pts), color))
+    surfaces = [(lab if lab else "_", p, c) for lab, p, c in surfaces]
+    return save_figure(plot_surfaces_3d(surfaces, title="Meshing tooth pair (pair frame, zero roll)"),
+                       out / "meshing_pair_3d.png")
+
+
+def stl_files(tooth_grids_by_member, teeth, out: Path) -> list[str]:
+    """STL of one tooth and of the whole gear for each member."""
+    from ..geometry.solid import gear_mesh, tooth_mesh
+    from ..io.stl import write_stl
+
+    names = []
+    for member, (convex, concave) in tooth_grids_by_member.items():
+        write_stl(out / f"{member.value}_tooth.stl", tooth_mesh(convex, concave), name=f"{member.value} tooth")
+        write_stl(out / f"{member.value}.stl", gear_mesh(convex, concave, teeth[member]), name=member.value)
+        names += [f"{member.value}_tooth.stl", f"{member.value}.stl"]
+    return names
+
+
+def step_files(tooth_grids_by_member, out: Path) -> list[str]:
+    """STEP with exact B-spline flank surfaces of one tooth per member (extra ``cad``)."""
+    from ..io.step import write_step
+
+    names = []
+    for member, (convex, concave) in tooth_grids_by_member.items():
+        name = f"{member.value}_tooth.step"
+        write_step(out / name, convex, concave, solid=True)
+        names.append(name)
+    return names
+
+
+def as_points(values) -> np.ndarray:
+    return np.asarray(values, float)

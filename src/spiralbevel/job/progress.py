@@ -1,0 +1,39 @@
+"""A progress bar over the named steps of a job (rich), or silence."""
+
+from __future__ import annotations
+
+from contextlib import contextmanager
+
+
+class Steps:
+    """Counts steps and shows them on a rich progress bar when enabled."""
+
+    def __init__(self, total: int, enabled: bool):
+        self.total = total
+        self.enabled = enabled
+        self._progress = None
+        self._task = None
+
+    def __enter__(self):
+        if self.enabled:
+            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+            self._progress = Progress(TextColumn("{task.description:<38}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
+                                      TimeElapsedColumn(), transient=False)
+            self._progress.__enter__()
+            self._task = self._progress.add_task("starting", total=self.total)
+        return self
+
+    def __exit__(self, *exc):
+        if self._progress is not None:
+            self._progress.__exit__(*exc)
+        return False
+
+    @contextmanager
+    def step(self, description: str):
+        """Run one step, labelled ``description``."""
+        if self._progress is not None:
+            self._progress.update(self._task, description=description)
+        yield
+        if self._progress is not None:
+            self._progress.advance(self._task)
