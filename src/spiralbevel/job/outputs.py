@@ -34,7 +34,7 @@ def pitch_traces(grids, pitch_angles, out: Path) -> str:
     """PNG of the tooth traces on the developed pitch cones."""
     from ..viz.traces import pitch_cone_trace, plot_pitch_traces
 
-    traces = [(f"{m.value} {s.value}", pitch_cone_trace(g.point, pitch_angles[m]), pitch_angles[m])
+    traces = [(m.value, f"{m.value} {s.value}", pitch_cone_trace(g.point, pitch_angles[m]), pitch_angles[m])
               for (m, s), g in grids.items()]
     return save_figure(plot_pitch_traces(traces), out / "pitch_traces.png")
 

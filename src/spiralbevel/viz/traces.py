@@ -32,11 +32,15 @@ def pitch_cone_trace(points, pitch_angle):
     return np.array(out).reshape(-1, 3)
 
 
-def develop(points, pitch_angle):
-    """Develop points on a cone of half-angle ``pitch_angle`` into the plane: (x, y) mm in the development."""
+def develop(points, pitch_angle, azimuth0=0.0):
+    """Develop points on a cone of half-angle ``pitch_angle`` into the plane: (x, y) mm in the development.
+
+    The axial plane at azimuth ``azimuth0`` (rad) maps onto the developed x-axis.
+    """
     points = np.asarray(points, float)
     R = np.linalg.norm(points, axis=-1)
-    theta = np.unwrap(np.arctan2(points[..., 1], points[..., 0])) * np.sin(pitch_angle)
+    az = np.angle(np.exp(1j * (np.arctan2(points[..., 1], points[..., 0]) - azimuth0)))
+    theta = np.unwrap(az) * np.sin(pitch_angle)
     return R * np.cos(theta), R * np.sin(theta)
 
 
@@ -45,20 +49,28 @@ def plot_pitch_traces(traces, title="Tooth traces on the developed pitch cones")
 
     Parameters
     ----------
-    traces : list of (label : str, points : (k, 3) float mm, pitch_angle : float rad)
+    traces : list of (group : str, label : str, points : (k, 3) float mm, pitch_angle : float rad)
+        One subplot per group (e.g. per member); each group is developed about the mean azimuth of its points so
+        that its tooth lies along the developed x-axis (cone distance).
     """
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.5, 5))
-    for label, pts, gamma in traces:
-        if len(pts) < 2:
+    groups = list(dict.fromkeys(t[0] for t in traces))
+    fig, axes = plt.subplots(1, len(groups), figsize=(5.5 * len(groups), 4.5), squeeze=False)
+    for ax, group in zip(axes[0], groups):
+        members = [t for t in traces if t[0] == group and len(t[2]) >= 2]
+        if not members:
             continue
-        x, y = develop(pts, gamma)
-        ax.plot(x, y, label=label)
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("developed x [mm]")
-    ax.set_ylabel("developed y [mm]")
-    ax.legend(fontsize=8)
-    ax.set_title(title)
+        allpts = np.concatenate([t[2] for t in members])
+        az0 = float(np.angle(np.mean(np.exp(1j * np.arctan2(allpts[:, 1], allpts[:, 0])))))
+        for _, label, pts, gamma in members:
+            x, y = develop(pts, gamma, az0)
+            ax.plot(x, y, label=label)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel("cone distance along the developed axis [mm]")
+        ax.set_ylabel("developed arc [mm]")
+        ax.set_title(group)
+        ax.legend(fontsize=8)
+    fig.suptitle(title)
     fig.tight_layout()
     return fig
