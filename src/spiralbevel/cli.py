@@ -59,9 +59,10 @@ def run(
 ):
     """Compute everything the design asks for and write report.json, plots, STL, STEP and tool paths."""
     from .io.design_file import load_design
-    from .job import run_design
 
     spec = load_design(design)
+    from .job import run_design
+
     summary = run_design(spec, out, progress=not quiet)
     console.print(f"[green]wrote[/] {out}/ ({len(summary.files)} files)")
     for line in summary.highlights:
