@@ -12,7 +12,8 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_valida
 
 from .angles import parse_angle_deg
 
-__all__ = ["Angle", "GearSetSpec", "DepthSpec", "FlankSpec", "ManufacturingSpec", "OutputSpec", "DesignFile"]
+__all__ = ["Angle", "GearSetSpec", "DepthSpec", "FlankSpec", "ManufacturingSpec", "OutputSpec", "CutterSpec",
+           "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "DesignFile"]
 
 Angle = Annotated[float, BeforeValidator(parse_angle_deg)]
 
@@ -97,11 +98,57 @@ class OutputSpec(_Model):
     draft: bool = True
 
 
+class CutterSpec(_Model):
+    """A head cutter blade given explicitly (seed 001 Tables 4 and 5 vocabulary)."""
+
+    point_radius: float = _f(..., unit="mm", gt=0.0, le=2000.0, description="R_h")
+    blade_angle: Angle = _f(..., unit="deg", gt=0.0, lt=60.0, description="alpha_h (modified blade angle)")
+    point_width: float = _f(..., unit="mm", gt=0.0, le=50.0, description="W")
+    edge_radius: float = _f(..., unit="mm", gt=0.0, le=20.0, description="rho_h")
+    profile_radius: Optional[float] = _f(None, unit="mm", gt=0.0, description="circular-arc blade profile radius")
+
+
+class MachineSpec(_Model):
+    """Cradle-machine settings given explicitly (signs: docs/conventions.md, 'Machine settings')."""
+
+    radial_setting: float = _f(..., unit="mm", gt=0.0, le=2000.0, description="S_r")
+    cradle_angle: Angle = _f(..., unit="deg", ge=-360.0, le=360.0, description="q")
+    machine_root_angle: Angle = _f(..., unit="deg", gt=0.0, lt=90.0, description="gamma_m")
+    machine_centre_to_back: float = _f(0.0, unit="mm", ge=-500.0, le=500.0, description="X_D")
+    sliding_base: float = _f(0.0, unit="mm", ge=-500.0, le=500.0, description="X_B")
+    blank_offset: float = _f(0.0, unit="mm", ge=-500.0, le=500.0, description="E_m")
+    ratio_of_roll: float = _f(..., unit="-", gt=0.0, le=20.0, description="m_ic")
+    modified_roll: tuple[float, ...] = _f((), unit="-", description="2C, 6D, 24E, 120F")
+    blank_offset_poly: tuple[float, ...] = _f((), unit="mm", description="E_m(psi_c) coefficients e1, e2, ...")
+
+
+class FlankMachineSpec(_Model):
+    """Cutter and/or machine of one flank; what is left out is derived from the blank."""
+
+    cutter: Optional[CutterSpec] = None
+    machine: Optional[MachineSpec] = None
+
+
+class FaceMillingSpec(_Model):
+    """Face-milling: default cutters from the blank, basic settings by crown-gear generation, or given settings."""
+
+    point_width: Optional[float] = _f(None, unit="mm", gt=0.0, le=50.0,
+                                      description="W of derived cutters; default: slot width at the root")
+    edge_radius: Optional[float] = _f(None, unit="mm", gt=0.0, le=20.0,
+                                      description="rho_h of derived cutters; default 0.45 W")
+    roll: Literal["pitch", "root"] = _f("pitch", description="ratio of roll of derived settings")
+    pinion_convex: FlankMachineSpec = FlankMachineSpec()
+    pinion_concave: FlankMachineSpec = FlankMachineSpec()
+    gear_convex: FlankMachineSpec = FlankMachineSpec()
+    gear_concave: FlankMachineSpec = FlankMachineSpec()
+
+
 class DesignFile(_Model):
     """A whole spiralbevel design file."""
 
     title: str = _f("spiral bevel gear set")
     gear_set: GearSetSpec
     flank: FlankSpec = FlankSpec()
+    face_milling: FaceMillingSpec = FaceMillingSpec()
     manufacturing: ManufacturingSpec = ManufacturingSpec()
     output: OutputSpec = OutputSpec()
