@@ -1,0 +1,147 @@
+"""Batched location of generated flank points by Newton's method (seed 003 with ERRATA §3.1 step 7).
+
+A point is located by two conditions on the generated surface (u, psi_c) -> r_i, with the cutter angle theta in
+closed form at every iterate. For a target (axial, radius) in the member frame the conditions are the corrected
+seed 003 equations F1 = |r x k| - R = 0 and F2 = r . k - L = 0 with k = (0, 0, 1) in the member frame.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from spiralbevel._core.newton import solve_batched
+from spiralbevel.conventions import TOL, Member
+from spiralbevel.errors import DesignError, GeometryError
+
+__all__ = ["BlankOutline", "locate_params"]
+
+
+@dataclass(frozen=True)
+class BlankOutline:
+    """Axial section of one member's blank in the coordinates used to clip flanks.
+
+    R = rho sin(delta) + z cos(delta) is the distance along the pitch generatrix (toe R_i, heel R_e: front and back
+    cones perpendicular to the pitch cone); h = rho cos(delta) - z sin(delta) is the height above the pitch line
+    (face cone through (R_m, h_am) at angle delta_a, root cone through (R_m, -h_fm) at angle delta_f).
+    """
+
+    delta: float
+    delta_a: float
+    delta_f: float
+    Rm: float
+    Ri: float
+    Re: float
+    ham: float
+    hfm: float
+
+    @classmethod
+    def from_blank(cls, blank, member) -> "BlankOutline":
+        i = Member(member).index
+        try:
+            g = lambda name: float(getattr(blank, f"{name}{i}"))  # noqa: E731
+            Re = float(getattr(blank, f"Re{i}", getattr(blank, "Re2")))
+            Ri = float(getattr(blank, f"Ri{i}", getattr(blank, "Ri2")))
+            out = cls(delta=g("delta"), delta_a=g("delta_a"), delta_f=g("delta_f"), Rm=float(blank.Rm), Ri=Ri,
+                      Re=Re, ham=g("ham"), hfm=g("hfm"))
+        except AttributeError as err:
+            raise DesignError.single("blank", type(blank).__name__, "an ISO 23509 BevelBlank", "-", str(err)) from err
+        if not (0 < out.Ri < out.Rm < out.Re):
+            raise DesignError.single("blank.Ri/Rm/Re", (out.Ri, out.Rm, out.Re), "0 < Ri < Rm < Re", "mm")
+        return out
+
+    def Rh(self, axial, radius):
+        sd, cd = np.sin(self.delta), np.cos(self.delta)
+        return radius * sd + axial * cd, radius * cd - axial * sd
+
+    def axial_radius(self, R, h):
+        sd, cd = np.sin(self.delta), np.cos(self.delta)
+        return R * cd - h * sd, R * sd + h * cd
+
+    def h_face(self, R):
+        return self.ham + (np.asarray(R, float) - self.Rm) * np.tan(self.delta_a - self.delta)
+
+    def h_root(self, R):
+        return -self.hfm - (np.asarray(R, float) - self.Rm) * np.tan(self.delta - self.delta_f)
+
+
+class Locator:
+    """Newton solves on the generated surface of one ``Generator`` with a coarse start table."""
+
+    def __init__(self, gen, outline: BlankOutline, psi_span=1.2, n_psi=97, n_u=13):
+        self.gen, self.outline = gen, outline
+        u0, uj = gen.cp["u_min"], gen.cp["u_j"]
+        depth = outline.ham + outline.hfm
+        u_top = uj + 1.6 * depth / np.cos(gen.cutter.blade_angle)
+        self.u_range = (u0, u_top)
+        U, P = np.meshgrid(np.linspace(u0, u_top, n_u), np.linspace(-psi_span, psi_span, n_psi), indexing="ij")
+        ax, rad, disc = gen.axial_radial(U, P)
+        R, h = outline.Rh(ax, rad)
+        mR = 0.3 * (outline.Re - outline.Ri)
+        ok = (np.abs(disc) <= 1.0) & (R > outline.Ri - mR) & (R < outline.Re + mR)
+        ok &= (h > outline.h_root(R) - depth) & (h < outline.h_face(R) + depth)
+        if not np.any(ok):
+            raise GeometryError.single("settings.radial_setting", gen.settings.radial_setting,
+                                       "a setting for which the cutter reaches the blank", "mm",
+                                       "the equation of meshing has no solution")
+        self._tab = np.stack([ax[ok], rad[ok]], -1)
+        self._par = np.stack([U[ok], P[ok]], -1)
+        self._tree = cKDTree(self._tab)
+
+    def start(self, axial, radius):
+        """Nearest table entry to each target (axial, radius)."""
+        tgt = np.stack([axial, radius], -1).reshape(-1, 2)
+        _, idx = self._tree.query(tgt)
+        return self._par[idx].reshape(np.shape(axial) + (2,))
+
+    def solve(self, fun, x0, what):
+        res = solve_batched(fun, x0, tol=TOL.newton_abs * 10, max_iter=TOL.max_iter,
+                            max_step=np.array([2.0, 0.05]))
+        if not np.all(res.converged):
+            bad = ~res.converged
+            raise GeometryError.single(
+                what, f"{int(bad.sum())} of {bad.size} points", "points on the generated flank", "mm",
+                f"the generated flank does not reach them (largest residual {np.max(res.residual):.3g} mm): "
+                "cutter/settings miss the blank or the face width")
+        _, _, disc = self.gen.axial_radial(res.x[..., 0], res.x[..., 1])
+        if np.any(np.abs(disc) > 1.0):
+            raise GeometryError.single(what, "-", "points reached by the cutter", "-", "no contact")
+        return res.x
+
+    def at_axial_radius(self, axial, radius, x0=None):
+        """(u, psi_c) of the flank point on the circle (axial, radius) about the member axis."""
+        axial, radius = np.broadcast_arrays(np.asarray(axial, float), np.asarray(radius, float))
+        gen = self.gen
+
+        def fun(x):
+            ax, rad, _ = gen.axial_radial(x[..., 0], x[..., 1])
+            return np.stack([rad - radius, ax - axial], -1)
+
+        return self.solve(fun, self.start(axial, radius) if x0 is None else x0, "locate(axial, radius)")
+
+    def at_R_h(self, R, h, x0=None):
+        ax, rad = self.outline.axial_radius(np.asarray(R, float), np.asarray(h, float))
+        return self.at_axial_radius(ax, rad, x0)
+
+    def at_R_u(self, R, u):
+        """psi_c (with u) of the flank point at blade parameter u and cone-distance coordinate R."""
+        R, u = np.broadcast_arrays(np.asarray(R, float), np.asarray(u, float))
+        gen, ol = self.gen, self.outline
+
+        def fun(x):
+            ax, rad, _ = gen.axial_radial(x[..., 0], x[..., 1])
+            Rx, _ = ol.Rh(ax, rad)
+            return np.stack([Rx - R, x[..., 0] - u], -1)
+
+        ax0, rad0 = ol.axial_radius(R, np.zeros_like(R) - ol.hfm)
+        x0 = self.start(ax0, rad0)
+        x0[..., 0] = u
+        return self.solve(fun, x0, "grid(face station)")
+
+
+def locate_params(gen, outline, axial, radius):
+    """(u, psi_c) arrays of the flank points at the given member-frame axial positions and radii."""
+    x = Locator(gen, outline).at_axial_radius(axial, radius)
+    return x[..., 0], x[..., 1]

@@ -1,0 +1,56 @@
+"""Seed 001 (Liu, Chen, Li, Machines 2024, 12, 34) blank and machine settings, as decoded in ERRATA §1.2.
+
+Table 1 (blank), Table 4 (gear, inner blade -> gear convex side) and Table 5 (pinion, outer blade -> pinion concave
+side). Pitch angles are the exact atan(23/65) (the table's 19 deg 29' / 70 deg 31' are these values rounded); mean
+addenda/dedenda are the table's (outer) values reduced to the mean cone distance along the face/root angles.
+Assumptions (not printed in seed 001): the pinion point width is taken equal to the gear's 2.29 mm; the machine root
+angles are the blank root angles.
+"""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+from spiralbevel.conventions import Hand, Member, Side
+from spiralbevel.machine.cutter import Blade, HeadCutter
+from spiralbevel.machine.settings import MachineSettings
+
+__all__ = ["seed001_blank", "seed001_settings"]
+
+
+def _dms(d, m=0, s=0.0):
+    return math.radians(d + m / 60 + s / 3600)
+
+
+def seed001_blank() -> SimpleNamespace:
+    """Seed 001 Table 1 with the ISO 23509 attribute names used by ``BevelBlank`` (mm, rad)."""
+    d1 = math.atan2(23, 65)
+    d2 = 0.5 * math.pi - d1
+    da1, da2 = _dms(21, 58, 30), _dms(71, 36, 40)
+    df1, df2 = _dms(18, 23, 20), _dms(68, 1, 30)
+    Rm, b = 115.9511, 37.0
+    half = 0.5 * b
+    return SimpleNamespace(
+        z1=23, z2=65, Sigma=0.5 * math.pi, hand1=Hand.RIGHT, hand2=Hand.LEFT,
+        delta1=d1, delta2=d2, delta_a1=da1, delta_a2=da2, delta_f1=df1, delta_f2=df2,
+        theta_f1=d1 - df1, theta_f2=d2 - df2, Rm=Rm, Re2=Rm + half, Ri2=Rm - half, b2=b,
+        beta_m1=math.radians(30.0), beta_m2=math.radians(30.0),
+        hfm1=2.24 - half * math.tan(d1 - df1), hfm2=5.80 - half * math.tan(d2 - df2),
+        ham1=5.10 - half * math.tan(da1 - d1), ham2=1.54 - half * math.tan(da2 - d2), rc0=114.3,
+    )
+
+
+def seed001_settings() -> dict:
+    """Seed 001 Tables 4 and 5: ``{(Member, Side): (HeadCutter, MachineSettings)}`` (ERRATA §1.2)."""
+    blank = seed001_blank()
+    gear_cutter = HeadCutter(point_radius=113.155, blade_angle=_dms(23, 50), point_width=2.29, edge_radius=1.31,
+                             blade=Blade.INNER)
+    gear = MachineSettings(radial_setting=115.078, cradle_angle=_dms(59, 20, 7), machine_root_angle=blank.delta_f2,
+                           machine_centre_to_back=0.0, sliding_base=0.051, blank_offset=0.0, ratio_of_roll=1.06)
+    pinion_cutter = HeadCutter(point_radius=124.879, blade_angle=_dms(21, 10), point_width=2.29, edge_radius=1.31,
+                               blade=Blade.OUTER)
+    pinion = MachineSettings(radial_setting=91.116, cradle_angle=_dms(56, 58, 56), machine_root_angle=blank.delta_f1,
+                             machine_centre_to_back=1.231, sliding_base=-0.059, blank_offset=34.197,
+                             ratio_of_roll=2.499)
+    return {(Member.GEAR, Side.CONVEX): (gear_cutter, gear), (Member.PINION, Side.CONCAVE): (pinion_cutter, pinion)}
