@@ -87,3 +87,27 @@ def step_files(tooth_grids_by_member, out: Path) -> list[str]:
 
 def as_points(values) -> np.ndarray:
     return np.asarray(values, float)
+
+
+def axial_section(grids, out: Path, title: str) -> str:
+    """PNG of every generated flank grid drawn in its member's axial section (axial position vs radius)."""
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.8))
+    for ax, member in zip(axes, (Member.PINION, Member.GEAR)):
+        for side, color in ((Side.CONVEX, "tab:blue"), (Side.CONCAVE, "tab:red")):
+            g = grids.get((member, side))
+            if g is None:
+                continue
+            z, r = g.points[..., 2], np.hypot(g.points[..., 0], g.points[..., 1])
+            ax.plot(z, r, color=color, lw=0.4)
+            ax.plot(z.T, r.T, color=color, lw=0.4)
+            ax.plot([], [], color=color, label=side.value)
+        ax.set_title(f"{member.value}: flank grids in the axial section")
+        ax.set_xlabel("axial position z [mm]")
+        ax.set_ylabel("radius [mm]")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.legend(fontsize=8)
+    fig.suptitle(title)
+    fig.tight_layout()
+    return save_figure(fig, out / "axial_section.png")

@@ -1,0 +1,153 @@
+"""Face-milled designs in the main job: cutters and machine settings per flank, generated flanks, tooth assembly."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..conventions import Member, Side
+from ..errors import GeometryError
+
+MEMBERS = (Member.PINION, Member.GEAR)
+SIDES = (Side.CONVEX, Side.CONCAVE)
+
+
+@dataclass(frozen=True)
+class FlankSetup:
+    """Cutter, settings and generated flank of one member side; ``source`` says where the settings came from."""
+
+    member: Member
+    side: Side
+    cutter: object
+    settings: object
+    flank: object
+    source: str
+
+
+def _default_cutter(spec, blank, member, side):
+    from ..machine.cutter import Blade, HeadCutter
+
+    fm, g = spec.face_milling, spec.gear_set
+    i = member.index
+    drive = (member is Member.PINION and side is Side.CONCAVE) or (member is Member.GEAR and side is Side.CONVEX)
+    alpha = math.radians(g.normal_pressure_angle if drive or g.coast_pressure_angle is None
+                         else g.coast_pressure_angle)
+    W = fm.point_width
+    if W is None:
+        # slot width at the root in the mean normal section: space width on the pitch line minus the flank run-out
+        space = math.pi * blank.mmn - getattr(blank, f"smn{i}")
+        W = space - 2.0 * getattr(blank, f"hfm{i}") * math.tan(alpha)
+        if W <= 0.2 * blank.mmn:
+            raise GeometryError.single(
+                f"face_milling.point_width", "derived", f"> {0.2 * blank.mmn:.3f}", "mm",
+                f"the {member.value} tooth space is too narrow at the root for a derived cutter "
+                f"(slot width {W:.3f} mm): give point_width explicitly or reduce the dedendum")
+    rho = fm.edge_radius if fm.edge_radius is not None else 0.45 * W
+    blade = Blade.INNER if side is Side.CONVEX else Blade.OUTER
+    s = blade.sign
+    return HeadCutter(point_radius=blank.rc0 + s * W / 2.0, blade_angle=alpha, point_width=W, edge_radius=rho,
+                      blade=blade)
+
+
+def _given_cutter(cs, side):
+    from ..machine.cutter import Blade, HeadCutter
+
+    return HeadCutter(point_radius=cs.point_radius, blade_angle=math.radians(cs.blade_angle),
+                      point_width=cs.point_width, edge_radius=cs.edge_radius,
+                      blade=Blade.INNER if side is Side.CONVEX else Blade.OUTER,
+                      profile_radius=cs.profile_radius if cs.profile_radius is not None else math.inf)
+
+
+def _given_settings(ms):
+    from ..machine.settings import MachineSettings
+
+    return MachineSettings(
+        radial_setting=ms.radial_setting, cradle_angle=math.radians(ms.cradle_angle),
+        machine_root_angle=math.radians(ms.machine_root_angle), machine_centre_to_back=ms.machine_centre_to_back,
+        sliding_base=ms.sliding_base, blank_offset=ms.blank_offset, ratio_of_roll=ms.ratio_of_roll,
+        modified_roll=ms.modified_roll, blank_offset_poly=ms.blank_offset_poly)
+
+
+def setup_flanks(spec, blank):
+    """Cutters, settings and generated flanks of all four member sides: {(member, side): FlankSetup}."""
+    from ..generation.flank import generate_flank
+    from ..machine.settings import MachineSettings
+
+    out = {}
+    for m in MEMBERS:
+        for s in SIDES:
+            fs = getattr(spec.face_milling, f"{m.value}_{s.value}")
+            cutter = _given_cutter(fs.cutter, s) if fs.cutter is not None else _default_cutter(spec, blank, m, s)
+            if fs.machine is not None:
+                settings, source = _given_settings(fs.machine), "given"
+            else:
+                settings = MachineSettings.from_blank(blank, m, s, cutter, roll=spec.face_milling.roll)
+                source = "from blank (crown-gear generation)"
+            out[(m, s)] = FlankSetup(m, s, cutter, settings, generate_flank(cutter, settings, blank, m, s), source)
+    return out
+
+
+def _azimuth(p):
+    return float(np.arctan2(p[1], p[0]))
+
+
+def tooth_rotation(blank, setups, member):
+    """Rotation (rad, about +z) of the concave flank that makes one tooth of the mean normal thickness smn.
+
+    The convex and concave mean pitch points lie at the same axial position and radius; the tooth's transverse
+    angular thickness there is (smn / cos(beta_m)) / r_m. The tooth material lies on the side opposite to the
+    convex flank's outward normal.
+    """
+    i = member.index
+    mc = setups[(member, Side.CONVEX)].flank.mean_point()
+    mk = setups[(member, Side.CONCAVE)].flank.mean_point()
+    r_m = math.hypot(mc.point[0], mc.point[1])
+    angle = getattr(blank, f"smn{i}") / math.cos(getattr(blank, f"beta_m{i}")) / r_m
+    e_az = np.array([-mc.point[1], mc.point[0], 0.0]) / r_m
+    side = 1.0 if mc.normal @ e_az > 0 else -1.0     # material toward -side
+    target = _azimuth(mc.point) - side * angle
+    rot = math.remainder(target - _azimuth(mk.point), 2 * math.pi)
+    c, s_ = math.cos(rot), math.sin(rot)
+    nk = np.array([c * mk.normal[0] - s_ * mk.normal[1], s_ * mk.normal[0] + c * mk.normal[1], mk.normal[2]])
+    if np.sign(nk @ e_az) == side:
+        raise GeometryError.single(f"{member.value}.flanks", "inconsistent",
+                                   "convex and concave outward normals facing away from one tooth", "-",
+                                   "the generated flanks cannot bound one tooth: check hands and blades")
+    return rot
+
+
+def rotate_grid(points, normals, angle):
+    """Rotate (..., 3) points and normals about +z by ``angle`` rad."""
+    c, s = math.cos(angle), math.sin(angle)
+    R = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    return points @ R.T, normals @ R.T
+
+
+def flank_report(setups):
+    """``flanks`` and ``machine_settings`` report sections (degrees, mm, 1/mm)."""
+    flanks, machines = {}, {}
+    for (m, s), st in setups.items():
+        mp = st.flank.mean_point()
+        res = abs(float(st.flank.meshing_residual(mp.u, mp.theta, mp.psi_c)))
+        flanks.setdefault(m.value, {})[s.value] = {
+            "mean_point_mm": mp.point, "mean_normal": mp.normal,
+            "spiral_angle_deg": math.degrees(mp.spiral_angle), "pressure_angle_deg": math.degrees(mp.pressure_angle),
+            "pressure_angle_root_deg": math.degrees(mp.pressure_angle_root),
+            "hand": "RH" if mp.hand_sign > 0 else "LH",
+            "k1_per_mm": mp.k1, "k2_per_mm": mp.k2, "meshing_residual": res,
+            "surface_parameters": {"u_mm": mp.u, "theta_rad": mp.theta, "psi_c_rad": mp.psi_c},
+        }
+        c = st.cutter
+        machines.setdefault(m.value, {})[s.value] = {
+            "source": st.source,
+            "settings": st.settings.to_dict(degrees=True),
+            "cutter": {"blade": c.blade.value, "point_radius_mm": c.point_radius,
+                       "blade_angle_deg": math.degrees(c.blade_angle), "point_width_mm": c.point_width,
+                       "edge_radius_mm": c.edge_radius,
+                       "profile_radius_mm": c.profile_radius if math.isfinite(c.profile_radius) else None},
+            "summary": [list(r) for r in st.settings.summary_rows(c, m, s)],
+        }
+    units = {"settings": "mm; cradle_angle and machine_root_angle in deg; ratio_of_roll dimensionless"}
+    return flanks, dict(machines, units=units)

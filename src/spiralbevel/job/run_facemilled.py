@@ -1,0 +1,51 @@
+"""The face-milled branch of the main job."""
+
+from __future__ import annotations
+
+from ..conventions import Member, Side
+from . import facemilled as fm
+from . import outputs
+
+
+def run_facemilled(spec, blank, out, steps, report, summary):
+    """Set up cutters and settings, generate the four flanks, and write the requested outputs into ``out``."""
+    o = spec.output
+    n_face, n_profile = o.grid
+    with steps.step("cutters and machine settings"):
+        setups = fm.setup_flanks(spec, blank)
+    with steps.step("generated flanks and curvatures"):
+        grids = {k: st.flank.grid(n_face, n_profile) for k, st in setups.items()}
+        flanks, machines = fm.flank_report(setups)
+        report["flanks"] = flanks
+        report["machine_settings"] = machines
+    with steps.step("tooth assembly"):
+        tooth = {}
+        for m in fm.MEMBERS:
+            rot = fm.tooth_rotation(blank, setups, m)
+            cx, cc = grids[(m, Side.CONVEX)], grids[(m, Side.CONCAVE)]
+            tooth[m] = ((cx.points, cx.normals), fm.rotate_grid(cc.points, cc.normals, rot))
+            report["flanks"][m.value]["concave"]["tooth_rotation_deg"] = float(rot * 180.0 / 3.141592653589793)
+    if o.plots:
+        with steps.step("plots"):
+            summary.files.append(outputs.axial_section(grids, out, spec.title))
+            summary.files.append(outputs.curvature_maps(
+                {k: _Geo(g.points, g.k1, g.k2) for k, g in grids.items()}, out, spec.title))
+    if o.stl:
+        with steps.step("STL"):
+            summary.files += outputs.stl_files(tooth, {Member.PINION: blank.z1, Member.GEAR: blank.z2}, out)
+    if o.step:
+        with steps.step("STEP"):
+            summary.files += outputs.step_files(tooth, out)
+    for m in fm.MEMBERS:
+        for s in fm.SIDES:
+            f = flanks[m.value][s.value]
+            summary.highlights.append(
+                f"{m.value} {s.value}: mean spiral angle {f['spiral_angle_deg']:.4f} deg, "
+                f"normal pressure angle {f['pressure_angle_deg']:.4f} deg ({machines[m.value][s.value]['source']})")
+
+
+class _Geo:
+    """Adapter: the attributes the curvature-map plot reads."""
+
+    def __init__(self, point, k1, k2):
+        self.point, self.k1, self.k2 = point, k1, k2
