@@ -105,6 +105,28 @@ def blank(
 
 @app.command()
 @_guard
+def machine(design: Optional[Path] = DesignArg):
+    """Print the machine summary sheet (cutter and cradle settings per member and side) of a face-milled design."""
+    from .io.design_file import load_design
+    from .job.blank import blank_from_design
+    from .job.facemilled import setup_flanks
+
+    spec = load_design(design)
+    if spec.flank.kind != "face-milled":
+        raise DesignError.single("flank.kind", spec.flank.kind, "'face-milled' for a machine summary", "-")
+    setups = setup_flanks(spec, blank_from_design(spec))
+    for (m, s), st in setups.items():
+        table = Table(title=f"{m.value} {s.value} ({st.source})")
+        table.add_column("setting")
+        table.add_column("value", justify="right")
+        table.add_column("unit")
+        for label, value, unit in st.settings.summary_rows(st.cutter):
+            table.add_row(label, value, unit)
+        console.print(table)
+
+
+@app.command()
+@_guard
 def check(design: Optional[Path] = DesignArg):
     """Validate a design file and report every problem."""
     from .io.design_file import load_design

@@ -1,0 +1,78 @@
+"""End to end: the bundled face-milled design of seed 001 (Tables 1, 4, 5)."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from spiralbevel.cli import app
+from spiralbevel.io.design_file import default_design_text
+
+runner = CliRunner()
+DESIGN = "aviation_23x65_facemilled.toml"
+
+
+@pytest.fixture(scope="module")
+def fm_run(tmp_path_factory):
+    d = tmp_path_factory.mktemp("fm")
+    f = d / "fm.toml"
+    f.write_text(default_design_text(DESIGN).replace("grid = [31, 15]", "grid = [15, 9]"))
+    out = d / "out"
+    result = runner.invoke(app, ["run", str(f), "-o", str(out), "-q"])
+    assert result.exit_code == 0, result.output
+    return out, json.loads((out / "report.json").read_text())
+
+
+def test_files(fm_run):
+    out, report = fm_run
+    assert {"report.json", "axial_section.png", "curvature_maps.png", "pinion_tooth.stl", "gear.stl"} <= set(
+        report["files"])
+
+
+def test_seed001_gear_mean_point(fm_run):
+    _, report = fm_run
+    gear = report["flanks"]["gear"]["convex"]
+    # seed 001 Table 1: 30 deg mean spiral angle, left-hand gear; Table 4 settings give it within 0.05 deg
+    assert gear["spiral_angle_deg"] == pytest.approx(30.0, abs=0.05)
+    assert gear["hand"] == "LH" and report["flanks"]["pinion"]["concave"]["hand"] == "RH"
+    # the mean point lies at the mean cone distance A_m = 115.9511 mm on the pitch cone (seed 003 / ERRATA §3.1)
+    p = np.array(gear["mean_point_mm"])
+    assert np.linalg.norm(p) == pytest.approx(115.9511, abs=1e-3)
+    assert math.degrees(math.atan2(math.hypot(p[0], p[1]), p[2])) == pytest.approx(70 + 30 / 60 + 49.9 / 3600,
+                                                                                   abs=1e-3)
+    for m in ("pinion", "gear"):
+        for s in ("convex", "concave"):
+            assert report["flanks"][m][s]["meshing_residual"] < 1e-10
+
+
+def test_machine_settings_in_report(fm_run):
+    _, report = fm_run
+    ms = report["machine_settings"]
+    gear = ms["gear"]["convex"]
+    assert gear["source"] == "given"
+    assert gear["settings"]["radial_setting"] == 115.078
+    assert gear["settings"]["cradle_angle"] == pytest.approx(59 + 20 / 60 + 7 / 3600)
+    derived = ms["gear"]["concave"]
+    assert derived["source"].startswith("from blank")
+    # crown-gear basic settings recomputed independently: A = Rm cos(theta_f2), S = sqrt(A^2 + rc^2 - 2 A rc sin b)
+    theta_f2 = math.radians(2 + 29 / 60 + 20 / 3600)
+    A = 115.95105 * math.cos(theta_f2)
+    rc = 114.3
+    S = math.sqrt(A * A + rc * rc - 2 * A * rc * math.sin(math.radians(30)))
+    assert derived["settings"]["radial_setting"] == pytest.approx(S, abs=2e-3)
+
+
+def test_machine_command_prints_summary():
+    from importlib import resources
+
+    path = resources.files("spiralbevel.data").joinpath(DESIGN)
+    result = runner.invoke(app, ["machine", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "Radial setting" in result.output and "91.1160" in result.output
+
+
+def test_machine_command_rejects_logspiral():
+    result = runner.invoke(app, ["machine"])
+    assert result.exit_code == 2 and "flank.kind" in result.output
