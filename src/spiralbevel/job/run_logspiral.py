@@ -20,6 +20,10 @@ def run_logspiral(spec, blank, out, steps, report, summary):
     with steps.step("flank geometry and curvatures"):
         grids = ls.flank_grids(pair, n_face, n_profile)
         report["logspiral"] = ls.flank_report(pair, grids)
+    with steps.step("conjugacy check (envelope solver)"):
+        from .conjugacy import conjugacy_report
+
+        report["logspiral"]["conjugacy"] = conjugacy_report(pair)
     teeth = {Member.PINION: pair.pinion.teeth, Member.GEAR: pair.gear.teeth}
     tooth = {m: ls.tooth_grids(pair, grids, m) for m in ls.MEMBERS}
     if o.plots:
@@ -40,6 +44,9 @@ def run_logspiral(spec, blank, out, steps, report, summary):
     if o.step:
         with steps.step("STEP"):
             summary.files += outputs.step_files(tooth, out)
+    cj = report["logspiral"]["conjugacy"]
+    summary.highlights.append("conjugacy (envelope of the pinion vs the gear flank): " + ", ".join(
+        f"{s} {v.get('max_distance_mm', float('nan')):.2e} mm" for s, v in cj.items()))
     k = report["logspiral"]["members"]
     summary.highlights.append(
         f"log-spiral: base cones {k['pinion']['base_cone_angle_deg']:.4f} / {k['gear']['base_cone_angle_deg']:.4f} deg,"
