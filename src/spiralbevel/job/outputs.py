@@ -56,8 +56,51 @@ def meshing_pair_3d(pair, grids, out: Path) -> str:
             label = f"gear {s.value}" if k == 0 else None
             surfaces.append((label or "", pair.to_pair_frame(Member.GEAR, pts), color))
     surfaces = [(lab if lab else "_", p, c) for lab, p, c in surfaces]
-    return save_figure(plot_surfaces_3d(surfaces, title="Meshing tooth pair (pair frame, zero roll)"),
-                       out / "meshing_pair_3d.png")
+    # look down the pitch line from beyond the heel: the tooth's cross-section between the two gear teeth
+    elev = 90.0 - math.degrees(pair.pinion.pitch_angle)
+    return save_figure(plot_surfaces_3d(surfaces, title="Meshing tooth pair (pair frame, zero roll), seen from the heel",
+                                        elev=elev, azim=0.0), out / "meshing_pair_3d.png")
+
+
+def _sphere_profile(points, radius):
+    """One point per grid column where the toe->heel rows cross the sphere |r| = radius (linear interpolation)."""
+    r = np.linalg.norm(points, axis=-1) - radius
+    out = []
+    for j in range(points.shape[1]):
+        g = r[:, j]
+        k = np.nonzero(np.diff(np.sign(g)))[0]
+        if k.size:
+            i = k[0]
+            t = g[i] / (g[i] - g[i + 1])
+            out.append(points[i, j] + t * (points[i + 1, j] - points[i, j]))
+    return np.array(out).reshape(-1, 3)
+
+
+def transverse_section(pair, grids, out: Path) -> str:
+    """PNG of the tooth profiles of both members on the sphere of the mean cone distance, pair frame, zero roll."""
+    from .._core.rotations import rot_z
+    from ..viz.pair3d import plot_transverse_section
+
+    g1 = pair.pinion.pitch_angle
+    Rm = pair.pinion.mean_cone_distance
+    ex, ey = np.array([0.0, 1.0, 0.0]), np.array([math.cos(g1), 0.0, -math.sin(g1)])
+    profiles = []
+    # one pinion tooth (its neighbours would be seen too obliquely in this projection) between gear teeth
+    for member, color, z, ks in ((Member.PINION, "tab:blue", pair.pinion.teeth, (0,)),
+                                 (Member.GEAR, "tab:red", pair.gear.teeth, (-1, 0, 1))):
+        for k in ks:
+            R = rot_z(2 * math.pi * k / z)
+            for s in (Side.CONVEX, Side.CONCAVE):
+                prof = _sphere_profile(grids[(member, s)].point @ R.T, Rm)
+                if len(prof) < 2:
+                    continue
+                P = pair.to_pair_frame(member, prof)
+                profiles.append((member.value, np.stack([P @ ex, P @ ey], -1), color))
+    # shift so the pitch point (Rm p) is the origin of the height axis
+    p = np.array([math.sin(g1), 0.0, math.cos(g1)]) * Rm
+    profiles = [(lab, xy - np.array([0.0, p @ ey]), c) for lab, xy, c in profiles]
+    fig = plot_transverse_section(profiles, title=f"Meshing teeth on the sphere R = {Rm:.3f} mm (zero roll)")
+    return save_figure(fig, out / "transverse_section.png")
 
 
 def stl_files(tooth_grids_by_member, teeth, out: Path) -> list[str]:

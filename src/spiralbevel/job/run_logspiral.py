@@ -32,6 +32,7 @@ def run_logspiral(spec, blank, out, steps, report, summary):
             summary.files.append(outputs.pitch_traces(
                 grids, {Member.PINION: pair.pinion.pitch_angle, Member.GEAR: pair.gear.pitch_angle}, out))
             summary.files.append(outputs.meshing_pair_3d(pair, grids, out))
+            summary.files.append(outputs.transverse_section(pair, grids, out))
     if o.draft:
         with steps.step("forging draft"):
             report["draft"] = _draft(spec, pair, out, summary, o.plots)

@@ -43,3 +43,31 @@ def plot_surfaces_3d(surfaces, title="", elev=25, azim=-60):
         ax.set_title(title)
     fig.tight_layout()
     return fig
+
+
+def plot_transverse_section(profiles, title=""):
+    """Tooth profiles of a meshing pair in the transverse (spherical) section, projected on the pitch-point plane.
+
+    Parameters
+    ----------
+    profiles : list of (label : str, xy : (k, 2) float mm, color : str)
+        Profile polylines in the plane tangent to the sphere at the mean pitch point: x across the teeth, y along
+        the pinion's addendum direction.
+    """
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    seen = set()
+    for label, xy, color in profiles:
+        xy = np.asarray(xy, float)
+        ax.plot(xy[:, 0], xy[:, 1], color=color, lw=1.6, label=None if label in seen else label)
+        seen.add(label)
+    ax.axhline(0.0, color="0.5", lw=0.6, ls="--")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("across the teeth [mm]")
+    ax.set_ylabel("toward the pinion tip [mm]")
+    ax.legend(fontsize=8, loc="upper right")
+    if title:
+        ax.set_title(title)
+    fig.tight_layout()
+    return fig
