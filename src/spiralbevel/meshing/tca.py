@@ -1,0 +1,289 @@
+"""Tooth contact analysis (TCA) of a bevel pair: seed 001 §4 (Eq. (16), ERRATA §1.1) on any two
+:class:`~spiralbevel.meshing.contact_surface.ContactSurface` flanks.
+
+For each pinion rotation phi1 the contact system (coincident points, opposite outward normals; 5 equations in the
+two surface parameters of each flank and the gear rotation phi2) is solved for every tooth pair. The pair in contact
+is the one that leads the gear furthest in its driven direction, i.e. the largest TE in the sign convention of
+:class:`~spiralbevel.meshing.tca_result.TCAResult` (seed 001 §5 calls it the pair with the "least transmission
+error": with TE curves <= 0 that is the least in magnitude; docs/conventions.md "Misalignments" and "TCA").
+
+Algorithm (all numpy, batched):
+
+1. mean contact point of pair 0 at phi1 = phi10 (Newton with minimum-norm steps);
+2. continuation outward in steps of half an angular pitch from the mean point with a second-order predictor and
+   the path tangent dx/dphi1 = -J^+ dF/dphi1 (tooth pairs differ only by the pitch, so one path serves all pairs,
+   see :mod:`spiralbevel.meshing.contact_problem`);
+3. all positions x pairs at once, started from cubic Hermite interpolation of the continuation nodes;
+4. domains, TE, the pair in contact, transfer points, contact ellipses.
+"""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+
+from .._core import tca as _k
+from ..errors import DesignError, NoContactError, Problem
+from .contact_problem import ContactProblem
+from .contact_surface import surface_contains
+from .ellipse import GLEASON_APPROACH
+from .misalignment import Misalignment
+from .tca_result import ContactStatus, TCAResult
+
+__all__ = ["solve_tca", "ContactProblem", "TCAResult", "ContactStatus", "Misalignment"]
+
+
+def _validate(n_positions, pairs, approach, tol, phi1_mean):
+    problems = []
+    if isinstance(n_positions, bool) or not isinstance(n_positions, numbers.Integral) or n_positions < 2:
+        problems.append(Problem("n_positions", n_positions, "integer >= 2", "-"))
+    try:
+        p = [int(k) for k in pairs]
+        if len(set(p)) != len(p) or not p or any(k != q for k, q in zip(p, pairs)):
+            raise ValueError
+    except (TypeError, ValueError):
+        problems.append(Problem("pairs", pairs, "distinct integers, e.g. (-1, 0, 1)", "-"))
+    if not (isinstance(approach, numbers.Real) and np.isfinite(approach) and approach > 0):
+        problems.append(Problem("approach", approach, "> 0", "mm"))
+    if not (isinstance(tol, numbers.Real) and 0 < tol < 1e-3):
+        problems.append(Problem("tol", tol, "0 < value < 1e-3", "mm"))
+    if not (isinstance(phi1_mean, numbers.Real) and np.isfinite(phi1_mean)):
+        problems.append(Problem("phi1_mean", phi1_mean, "a finite number", "rad"))
+    if problems:
+        raise DesignError(problems)
+
+
+def _hermite(o, nodes, X, Xp):
+    """Cubic Hermite interpolation (extrapolation beyond the ends) of X(o) from sorted nodes with slopes Xp."""
+    i = np.clip(np.searchsorted(nodes, o) - 1, 0, len(nodes) - 2)
+    h = nodes[i + 1] - nodes[i]
+    t = ((o - nodes[i]) / h)[..., None]
+    h = h[..., None]
+    h00 = 2 * t**3 - 3 * t**2 + 1
+    h10 = t**3 - 2 * t**2 + t
+    h01 = -2 * t**3 + 3 * t**2
+    h11 = t**3 - t**2
+    return h00 * X[i] + h10 * h * Xp[i] + h01 * X[i + 1] + h11 * h * Xp[i + 1]
+
+
+def _quintic(o_nodes, X, Xp, o):
+    """Polynomial of degree 5 through three nodes with values and slopes, evaluated (extrapolated) at ``o (k,)``."""
+    o_nodes = np.asarray(o_nodes, float)
+    c = o_nodes.mean()
+    s = np.ptp(o_nodes) or 1.0
+    t = (o_nodes - c) / s
+    p = np.arange(6)
+    A = np.concatenate([t[:, None] ** p, (p * t[:, None] ** np.maximum(p - 1, 0)) / s], 0)  # (6, 6)
+    coef = np.linalg.solve(A, np.concatenate([X, Xp], 0))  # (6, 5)
+    tt = (np.asarray(o, float) - c) / s
+    return (tt[:, None] ** p) @ coef
+
+
+def _continuation(prob, x_mean, phi1_mean, o_lo, o_hi, step, tol):
+    """Nodes (sorted offsets, X, X') of the solution path from the mean point out to [o_lo, o_hi].
+
+    Level 1 solves the nodes +-step from the tangent predictor; each further level advances every side by up to two
+    steps at once, predicted by the quintic Hermite polynomial through that side's last three nodes.
+    """
+    xp0 = prob.tangent(x_mean, phi1_mean, prob.basis(x_mean, phi1_mean))
+    nodes = {0: (x_mean, xp0)}  # integer step index -> (x, x')
+    need = {1: int(np.ceil(o_hi / step - 1e-9)), -1: int(np.ceil(-o_lo / step - 1e-9))}
+    last = {1: 0, -1: 0}
+    alive = {d: need[d] > 0 for d in (1, -1)}
+    while any(alive.values()):
+        idx, guesses = [], []
+        for d in (1, -1):
+            if not alive[d]:
+                continue
+            j0 = last[d]
+            if abs(j0) == 0:
+                new = [d]
+                guesses.append(x_mean + d * step * xp0)
+            else:
+                new = [j0 + d * m for m in (1, 2) if abs(j0) + m <= need[d]]
+                known = [j0 - 2 * d, j0 - d, j0] if (j0 - 2 * d) in nodes else [j0 - d, j0]
+                if len(known) == 3:
+                    Xk = np.array([nodes[j][0] for j in known])
+                    Pk = np.array([nodes[j][1] for j in known])
+                    guesses.extend(_quintic(np.array(known) * step, Xk, Pk, np.array(new) * step))
+                else:
+                    xa, pa = nodes[j0]
+                    guesses.extend(xa + (np.array(new)[:, None] - j0) * step * pa)
+            idx.extend(new)
+        idx = np.array(idx)
+        phi = phi1_mean + idx * step
+        x, conv, _, _, _ = prob.solve(phi, np.array(guesses), tol=tol)
+        tang = prob.tangent(x, phi, prob.basis(x, phi))
+        for d in (1, -1):
+            if not alive[d]:
+                continue
+            for m in np.nonzero(np.sign(idx) == d)[0][np.argsort(np.abs(idx[np.sign(idx) == d]))]:
+                if not conv[m] or not np.all(np.isfinite(tang[m])):
+                    alive[d] = False
+                    break
+                nodes[int(idx[m])] = (x[m], tang[m])
+                last[d] = int(idx[m])
+            if abs(last[d]) >= need[d]:
+                alive[d] = False
+    keys = sorted(nodes)
+    return (np.array(keys, float) * step, np.array([nodes[k][0] for k in keys]),
+            np.array([nodes[k][1] for k in keys]))
+
+
+def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = None, phi1_mean: float = 0.0,
+              n_positions: int = 41, pairs=(-1, 0, 1), start=None, approach: float = GLEASON_APPROACH,
+              tol: float = 1e-10, line_tol: float = 1e-7, line_anchor: int | None = 1,
+              te_tie: float = 1e-11) -> TCAResult:
+    """Tooth contact analysis over one mesh cycle (2 pi / z1 of pinion rotation centred on the mean point).
+
+    Parameters
+    ----------
+    pinion, gear : ContactSurface
+        Pinion and gear flanks of the meshing side, member frames, outward normals.
+    kinematics : object
+        With ``z1``, ``z2``, ``shaft_angle`` (rad), e.g. ``BevelPairKinematics``.
+    misalignment : Misalignment, optional
+    phi1_mean : float, rad
+        phi10, pinion rotation of the mean contact point (centre of the cycle).
+    n_positions : int
+        Pinion positions over the cycle [phi10 - pi/z1, phi10 + pi/z1].
+    pairs : sequence of int
+        Tooth pairs k (pinion tooth k meets gear tooth k; pair k's mean point is at phi10 - 2 pi k / z1).
+    start : (5,) float, optional
+        Starting guess (q1, q2, phi2) of the mean contact point; default: the surfaces' ``reference_params``
+        and phi2 = -(z1/z2) phi10.
+    approach : float, mm
+        Elastic approach of the contact ellipses.
+    tol : float, mm
+        Newton tolerance on max|F|.
+    line_tol : float
+        s_min/s_max of the equilibrated Jacobian below which the contact is reported as line contact.
+    line_anchor : int or None
+        On line contact, the reported point of the contact line is the one where pinion parameter ``line_anchor``
+        (0 or 1) equals its reference value (for the log-spiral flank, index 1 = phi: mid-face); None keeps the
+        minimum-norm Newton point.
+    te_tie : float, rad
+        Pairs whose TE is within ``te_tie`` of the largest share the load (line contact of conjugate flanks); among
+        them a pair inside its flank domains is reported.
+
+    Returns
+    -------
+    TCAResult
+
+    Raises
+    ------
+    NoContactError
+        No contact at the mean position, or at none of the positions.
+    DesignError
+        Invalid arguments.
+    """
+    _validate(n_positions, pairs, approach, tol, phi1_mean)
+    prob = ContactProblem(pinion, gear, kinematics, misalignment)
+    z1, z2, ratio = prob.z1, prob.z2, prob.ratio
+    pairs = np.array([int(k) for k in pairs])
+    T = 2 * np.pi / z1
+    # ---------------------------------------------------------------- 1. mean point
+    if start is None:
+        q1 = getattr(pinion, "reference_params", None)
+        q2 = getattr(gear, "reference_params", None)
+        if q1 is None or q2 is None:
+            raise DesignError.single("start", None, "(q1, q2, phi2) or surfaces with reference_params", "-")
+        start = np.concatenate([np.asarray(q1, float), np.asarray(q2, float), [-ratio * phi1_mean]])
+    start = np.asarray(start, float).reshape(1, 5)
+    xm, conv, res, _, _ = prob.solve(np.array([phi1_mean]), start, tol=tol)
+    xm = xm[0]
+    st = prob.state(xm)
+    R1, R2, o1, _ = prob.pose(phi1_mean, xm[4])
+    n1f, n2f = R1 @ st[1], R2 @ st[5]
+    if not conv[0] or n1f @ n2f > -0.5:
+        raise NoContactError(f"no contact at the mean position phi1 = {phi1_mean:.6g} rad "
+                             f"(residual {res[0]:.3e} mm, n1.n2 = {n1f @ n2f:.3f})")
+    phi2_mean = float(xm[4])
+    r1f = o1 + R1 @ st[0]
+    drive = 1 if np.cross(prob.axes[0], r1f - o1) @ n1f > 0 else -1
+    # ---------------------------------------------------------------- 2. continuation nodes
+    phi1 = phi1_mean + np.linspace(-T / 2, T / 2, n_positions)
+    off = (phi1 - phi1_mean)[:, None] + pairs[None, :] * T  # effective offsets (n, P)
+    nodes, X, Xp = _continuation(prob, xm, phi1_mean, off.min(), off.max(), T / 2, max(tol, 1e-8))
+    # ---------------------------------------------------------------- 3. all positions x pairs
+    guess = _hermite(off.reshape(-1), nodes, X, Xp)
+    phi_eff = phi1_mean + off.reshape(-1)
+    x, conv, res, sratio, iters = prob.solve(phi_eff, guess, tol=tol)
+    line = conv & (sratio < line_tol)
+    if np.any(line) and line_anchor is not None:
+        # contact line: pick the point of the line where pinion parameter `line_anchor` has its reference value
+        ref = getattr(pinion, "reference_params", None)
+        value = float(ref[line_anchor]) if ref is not None else float(xm[line_anchor])
+        ix = np.nonzero(line)[0]
+        xl, cl, rl, _, _ = prob.solve(phi_eff[ix], x[ix], tol=tol, anchor=(line_anchor, np.full(ix.size, value)))
+        x[ix], conv[ix], res[ix] = xl, cl, rl
+    # ---------------------------------------------------------------- 4. evaluation
+    n, P = off.shape
+    r1, n1, dr1, dn1, r2, n2, dr2, dn2 = prob.state(x)
+    R1, R2, o1, o2 = prob.pose(phi_eff, x[:, 4])
+    n1f = np.einsum("mij,mj->mi", R1, n1)
+    n2f = np.einsum("mij,mj->mi", R2, n2)
+    pf = o1 + np.einsum("mij,mj->mi", R1, r1)
+    valid = conv & (np.einsum("mi,mi->m", n1f, n2f) < -0.5)
+    kk = np.broadcast_to(pairs, (n, P)).reshape(-1)
+    phi2 = prob.gear_angle(x[:, 4], kk)
+    te = drive * (-(phi2 - phi2_mean) - ratio * (np.repeat(phi1, P) - phi1_mean))
+    inside = surface_contains(pinion, x[:, 0:2]) & surface_contains(gear, x[:, 2:4])
+    sp = np.full(n * P, int(ContactStatus.NO_CONTACT))
+    sp[valid & inside & ~line] = ContactStatus.OK
+    sp[valid & inside & line] = ContactStatus.LINE
+    sp[valid & ~inside] = ContactStatus.EDGE
+    te = np.where(valid, te, np.nan)
+    # pair in contact: largest TE among valid solutions
+    te2 = te.reshape(n, P)
+    anyv = np.any(np.isfinite(te2), axis=1)
+    if not np.any(anyv):
+        raise NoContactError(f"no contact at any of the {n} positions phi1 in [{phi1[0]:.6g}, {phi1[-1]:.6g}] rad")
+    sp2 = sp.reshape(n, P)
+    # ties (several pairs at the same TE, e.g. line contact of conjugate flanks): prefer a pair inside its domain
+    tmax = np.max(np.where(np.isfinite(te2), te2, -np.inf), axis=1, keepdims=True)
+    score = np.where(np.isfinite(te2), te2, -np.inf)
+    tie = score >= tmax - te_tie
+    score = np.where(tie, tmax + np.where(sp2 != ContactStatus.EDGE, 1.0, 0.0) + te2 - tmax, score)
+    sel = np.where(anyv, np.argmax(score, axis=1), -1)
+    status = np.where(anyv, sp2[np.arange(n), np.maximum(sel, 0)], int(ContactStatus.NO_CONTACT))
+    # ellipses at the selected contacts
+    flat = np.arange(n) * P + np.maximum(sel, 0)
+    W1 = R1[flat] @ _k.weingarten(dr1[flat], dn1[flat]) @ np.swapaxes(R1[flat], -1, -2)
+    W2 = R2[flat] @ _k.weingarten(dr2[flat], dn2[flat]) @ np.swapaxes(R2[flat], -1, -2)
+    with np.errstate(all="ignore"):
+        lam, dirs = _k.relative_curvature(W1, W2, n1f[flat])
+        axes_ = _k.ellipse_axes(lam, approach)
+    axes_ = np.where((status == ContactStatus.LINE)[:, None], np.inf, axes_)
+    dirs1 = np.einsum("mji,mkj->mki", R1[flat], dirs)
+    dirs2 = np.einsum("mji,mkj->mki", R2[flat], dirs)
+    nocon = ~anyv
+    for arr in (lam, axes_, dirs1, dirs2):
+        arr[nocon] = np.nan
+    # transfer points: where the pair in contact changes
+    transfers = []
+    for i in range(n - 1):
+        a, b = sel[i], sel[i + 1]
+        if a >= 0 and b >= 0 and a != b:
+            d0 = te2[i, b] - te2[i, a]
+            d1 = te2[i + 1, b] - te2[i + 1, a]
+            if np.isfinite(d0) and np.isfinite(d1) and max(abs(d0), abs(d1)) <= te_tie:
+                continue  # shared contact (tie), not a transfer
+            if np.isfinite(d0) and np.isfinite(d1) and d1 != d0:
+                transfers.append(phi1[i] + (phi1[i + 1] - phi1[i]) * (-d0) / (d1 - d0))
+            else:
+                transfers.append(0.5 * (phi1[i] + phi1[i + 1]))
+
+    def rs(a, k=None):
+        return a.reshape((n, P) + a.shape[1:])
+
+    return TCAResult(
+        phi1=phi1, phi1_mean=float(phi1_mean), phi2_mean=phi2_mean, drive_sign=drive, pairs=pairs,
+        te_pairs=te2, phi2_pairs=rs(np.where(valid, phi2, np.nan)), status_pairs=sp2,
+        params1=rs(x[:, 0:2]), params2=rs(x[:, 2:4]), point1=rs(r1), normal1=rs(n1), point2=rs(r2), normal2=rs(n2),
+        point_fixed=rs(pf), normal_fixed=rs(n1f), residual=rs(res), pair=sel, status=status,
+        semi_axes=axes_, ellipse_dirs1=dirs1, ellipse_dirs2=dirs2, relative_curvatures=lam,
+        approach=float(approach), transfer_phi1=np.array(transfers), z1=z1, z2=z2,
+        shaft_angle=prob.shaft_angle, iterations=int(iters),
+    )

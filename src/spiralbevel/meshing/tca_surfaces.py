@@ -1,0 +1,272 @@
+"""Log-spiral flanks as :class:`~spiralbevel.meshing.contact_surface.ContactSurface`, and an exactly conjugate
+log-spiral pair (seed 000 Eq. (16); seed 002 conjugacy theorem, ERRATA §2.2).
+
+These are the reference surfaces of the TCA tests and benchmark: a consistent pair (sin d1 : sin d2 = z1 : z2, gear
+spiral parameter -beta) is in line contact with zero transmission error; a crowned pinion
+(:class:`~spiralbevel.meshing.contact_surface.NormalDeviation`) gives point contact and a parabolic TE.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._core import logspiral as _ls
+from .._core.rotations import rot_z, rot_y
+from ..errors import DesignError, GeometryError
+
+__all__ = ["LogSpiralSurface", "LogSpiralPair", "conjugate_logspiral_pair"]
+
+
+@dataclass(frozen=True)
+class LogSpiralSurface:
+    """Seed-000 log-spiral flank with parameters (varphi, phi), turned by ``azimuth`` about the member axis.
+
+    Parameters
+    ----------
+    rho0 : float, mm
+    delta : float, rad
+        Base-cone half-angle.
+    beta : float, rad
+        Spiral parameter in the base-cone tangent plane (> 0 right hand).
+    azimuth : float, rad
+        Rotation of the flank about +z (phasing).
+    psi_range, phi_range : (2,) float, rad, optional
+        Flank domain: signed psi = (varphi - phi) sin(delta) between root and face cones, phi between toe and heel
+        spheres (ERRATA §0.1 parallelogram). ``contains`` is all True when omitted.
+    reference_params : (2,) float, optional
+        (varphi, phi) near the mean contact point.
+
+    Notes
+    -----
+    Outward normal n_out = sign(psi) n with n of ERRATA §0.1 Eq. (21); derivatives analytic (ERRATA §0.1):
+    n_varphi = cos(delta) cos(psi - beta) m, n_phi = sin(delta) [cos(psi - beta) t + sin(psi - beta) w].
+    """
+
+    rho0: float
+    delta: float
+    beta: float
+    azimuth: float = 0.0
+    psi_range: tuple | None = None
+    phi_range: tuple | None = None
+    reference_params: tuple | None = None
+    _R: np.ndarray = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        if not (self.rho0 > 0 and 0 < self.delta < np.pi / 2 and 0 < abs(self.beta) < np.pi / 2):
+            raise DesignError.single("log-spiral flank", (self.rho0, self.delta, self.beta),
+                                     "rho0 > 0, 0 < delta < pi/2, 0 < |beta| < pi/2", "mm, rad, rad")
+        if self.psi_range is not None and self.psi_range[0] * self.psi_range[1] <= 0:
+            raise GeometryError.single("psi_range", self.psi_range, "an interval not containing 0", "rad",
+                                       "psi = 0 is the singular (cuspidal) edge, ERRATA §0.1")
+        object.__setattr__(self, "_R", rot_z(self.azimuth))
+
+    def _kernel(self, params, deriv):
+        """Lean evaluation of seed 000 Eq. (16) and ERRATA §0.1 (19)-(21): r, n_out and optionally dr, dn."""
+        p = np.asarray(params, float)
+        vphi, phi = p[..., 0], p[..., 1]
+        d, b = self.delta, self.beta
+        sd, cd = np.sin(d), np.cos(d)
+        with np.errstate(all="ignore"):  # wild solver iterates give inf/NaN, never warnings
+            c, s = np.cos(vphi), np.sin(vphi)
+            psi = (vphi - phi) * sd
+            rho = self.rho0 * np.exp(phi * (sd / np.tan(b)))
+            cp, sp = np.cos(psi), np.sin(psi)
+            cpb, spb = np.cos(psi - b), np.sin(psi - b)
+            sg = np.where(psi >= 0, 1.0, -1.0)
+            # t = (sd c, sd s, cd), w = (s, -c, 0), m = (cd c, cd s, -sd)
+            shape = p.shape[:-1] + (3,)
+            r = np.empty(shape)
+            a1, a2 = rho * cp, rho * sp
+            r[..., 0] = a1 * sd * c + a2 * s
+            r[..., 1] = a1 * sd * s - a2 * c
+            r[..., 2] = a1 * cd
+            n = np.empty(shape)  # n_out = sg (cpb w - spb t)
+            n[..., 0] = sg * (cpb * s - spb * sd * c)
+            n[..., 1] = sg * (-cpb * c - spb * sd * s)
+            n[..., 2] = sg * (-spb * cd)
+            if deriv:
+                dr = np.empty(shape + (2,))
+                dn = np.empty(shape + (2,))
+                f = rho * sp * cd  # r_varphi = f m
+                dr[..., 0, 0] = f * cd * c
+                dr[..., 1, 0] = f * cd * s
+                dr[..., 2, 0] = -f * sd
+                e2x = cpb * sd * c + spb * s  # e2 = cpb t + spb w
+                e2y = cpb * sd * s - spb * c
+                e2z = cpb * cd
+                g = rho * sd / np.sin(b)  # r_phi = g e2
+                dr[..., 0, 1] = g * e2x
+                dr[..., 1, 1] = g * e2y
+                dr[..., 2, 1] = g * e2z
+                h = sg * cd * cpb  # n_varphi = cd cpb m
+                dn[..., 0, 0] = h * cd * c
+                dn[..., 1, 0] = h * cd * s
+                dn[..., 2, 0] = -h * sd
+                k = sg * sd  # n_phi = sd e2
+                dn[..., 0, 1] = k * e2x
+                dn[..., 1, 1] = k * e2y
+                dn[..., 2, 1] = k * e2z
+        if self.azimuth != 0.0:
+            R = self._R
+            r, n = r @ R.T, n @ R.T
+            if deriv:
+                dr, dn = R @ dr, R @ dn
+        return (r, n, dr, dn) if deriv else (r, n)
+
+    def evaluate(self, params):
+        """Points (..., 3) mm and outward normals (..., 3) at ``params = (varphi, phi)``."""
+        return self._kernel(params, False)
+
+    def derivatives(self, params):
+        """(r, n, dr, dn) with dr, dn (..., 3, 2) w.r.t. (varphi, phi), analytic."""
+        return self._kernel(params, True)
+
+    def contains(self, params, tol=1e-12):
+        """True where (varphi, phi) lies on the flank domain (closed, with a tolerance ``tol`` rad)."""
+        p = np.asarray(params, float)
+        ok = np.ones(p.shape[:-1], bool)
+        if self.psi_range is not None:
+            psi = (p[..., 0] - p[..., 1]) * np.sin(self.delta)
+            lo, hi = sorted(self.psi_range)
+            ok &= (psi >= lo - tol) & (psi <= hi + tol)
+        if self.phi_range is not None:
+            lo, hi = sorted(self.phi_range)
+            ok &= (p[..., 1] >= lo - tol) & (p[..., 1] <= hi + tol)
+        return ok
+
+    def params_of(self, psi, phi):
+        """(varphi, phi) stacked (..., 2) from psi and phi (rad)."""
+        psi, phi = np.broadcast_arrays(np.asarray(psi, float), np.asarray(phi, float))
+        return np.stack([phi + psi / np.sin(self.delta), phi], -1)
+
+    def grid(self, n_phi=21, n_psi=11):
+        """Points (n_phi, n_psi, 3) mm of the flank domain: rows toe -> heel, columns psi_range[0] -> [1]."""
+        if self.psi_range is None or self.phi_range is None:
+            raise DesignError.single("domain", None, "psi_range and phi_range set", "rad")
+        phi = np.linspace(*self.phi_range, n_phi)[:, None]
+        psi = np.linspace(*self.psi_range, n_psi)[None, :]
+        return self.evaluate(self.params_of(psi, phi))[0]
+
+    def with_changes(self, **kw) -> "LogSpiralSurface":
+        d = dict(rho0=self.rho0, delta=self.delta, beta=self.beta, azimuth=self.azimuth, psi_range=self.psi_range,
+                 phi_range=self.phi_range, reference_params=self.reference_params)
+        d.update(kw)
+        return LogSpiralSurface(**d)
+
+
+@dataclass(frozen=True)
+class LogSpiralPair:
+    """A conjugate log-spiral pair in the assembly of docs/conventions.md, touching at the mean point at phi = 0.
+
+    Attributes
+    ----------
+    pinion, gear : LogSpiralSurface
+    z1, z2 : int
+    shaft_angle : float, rad
+    mean_point : (3,) float, mm
+        Contact point at phi1 = phi2 = 0 (fixed frame = pinion frame at phi1 = 0), on the pitch line.
+    pitch_angles : (2,) float, rad
+    base_cone_angles : (2,) float, rad
+    spiral_parameter : float, rad
+        beta of the pinion; the gear has -beta.
+    """
+
+    pinion: LogSpiralSurface
+    gear: LogSpiralSurface
+    z1: int
+    z2: int
+    shaft_angle: float
+    mean_point: np.ndarray
+    pitch_angles: tuple
+    base_cone_angles: tuple
+    spiral_parameter: float
+
+
+def _psi_of_cone(gamma, delta):
+    return np.arccos(np.clip(np.cos(gamma) / np.cos(delta), -1.0, 1.0))
+
+
+def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressure_angle=np.radians(20.0),
+                             spiral_angle=np.radians(35.0), mean_cone_distance=115.9511, face_width=37.0,
+                             addendum=(5.10, 1.54), dedendum=(2.24, 5.80)) -> LogSpiralPair:
+    """Exactly conjugate log-spiral pair: pinion convex (right hand, psi > 0), gear concave (left hand).
+
+    Parameters
+    ----------
+    z1, z2 : int
+    shaft_angle, normal_pressure_angle, spiral_angle : float, rad
+        Sigma, alpha_n and the mean spiral angle on the pitch cone (ERRATA §0.1 design recipe).
+    mean_cone_distance, face_width : float, mm
+    addendum, dedendum : (2,) float, mm
+        Pinion and gear; they set the root and face cones of the flank domains (angles atan(h / A_m)).
+
+    Notes
+    -----
+    Recipe (ERRATA §0.1): tan g1 = sin S / (z2/z1 + cos S), tan a_t = tan a_n / cos b_m, sin d_i = sin g_i cos a_t,
+    sin beta = cos a_n sin b_m. The gear flank has base cone d2, spiral parameter -beta and is phased (azimuth) so
+    that both flanks pass through the pitch point A_m p with opposite outward normals (ERRATA §2.2 theorem).
+    """
+    S = float(shaft_angle)
+    g1 = np.arctan2(np.sin(S), z2 / z1 + np.cos(S))
+    g2 = S - g1
+    at = np.arctan(np.tan(normal_pressure_angle) / np.cos(spiral_angle))
+    d1 = np.arcsin(np.sin(g1) * np.cos(at))
+    d2 = np.arcsin(np.sin(g2) * np.cos(at))
+    beta = np.arcsin(np.cos(normal_pressure_angle) * np.sin(spiral_angle))
+    Am, b = float(mean_cone_distance), float(face_width)
+    p = np.array([np.sin(g1), 0.0, np.cos(g1)])
+    target = Am * p
+    # pinion: contact plane varphi* = +-acos(tan d1 / tan g1) at phi1 = 0; psi = +psi_pitch (convex branch)
+    psi1 = _psi_of_cone(g1, d1)
+    best = None
+    for sgn in (1.0, -1.0):
+        vphi = sgn * np.arccos(np.tan(d1) / np.tan(g1))
+        phi = vphi - psi1 / np.sin(d1)
+        rho0 = Am * np.exp(-phi * np.sin(d1) / np.tan(beta))
+        r = _ls.point(vphi, phi, rho0, d1, beta)
+        err = np.linalg.norm(r - target)
+        if best is None or err < best[0]:
+            best = (err, vphi, phi, rho0)
+    err, vphi1, phi1m, rho01 = best
+    if err > 1e-9 * Am:
+        raise GeometryError.single("pitch point", err, "< 1e-9 A_m", "mm", "pinion flank misses the pitch point")
+
+    def ranges(rho0, delta, bt, gamma, ha, hf, sign):
+        phis = [np.log(R / rho0) / (np.sin(delta) / np.tan(bt)) for R in (Am - b / 2, Am + b / 2)]
+        root = gamma - np.arctan(hf / Am)
+        face = gamma + np.arctan(ha / Am)
+        if root <= delta:
+            raise GeometryError.single("root cone", np.degrees(root), f"> base cone {np.degrees(delta):.4f}", "deg",
+                                       "the flank would cross the singular edge psi = 0")
+        psis = sorted(sign * _psi_of_cone(c, delta) for c in (root, face))
+        return tuple(psis), tuple(sorted(phis))
+
+    psr1, phr1 = ranges(rho01, d1, beta, g1, addendum[0], dedendum[0], 1.0)
+    pinion = LogSpiralSurface(rho01, d1, beta, 0.0, psr1, phr1, (float(vphi1), float(phi1m)))
+    # gear: the pitch point in the gear member frame at phi2 = 0, and the pinion's outward normal there
+    _, n1 = pinion.evaluate(np.array([vphi1, phi1m]))
+    B2 = rot_y(S)
+    r2 = B2.T @ target
+    n2_target = -(B2.T @ n1)
+    psi2m = _psi_of_cone(g2, d2)
+    best = None
+    for sgn in (1.0, -1.0):
+        psi2 = sgn * psi2m
+        q = np.array([psi2 / np.sin(d2), 0.0])  # rho0 = A_m -> phi = 0 at the pitch point
+        g0 = LogSpiralSurface(Am, d2, -beta)
+        r0, n0 = g0.evaluate(q)
+        tau = np.arctan2(r2[1], r2[0]) - np.arctan2(r0[1], r0[0])
+        Rz = rot_z(tau)
+        miss = np.linalg.norm(Rz @ r0 - r2) + np.linalg.norm(Rz @ n0 - n2_target)
+        if best is None or miss < best[0]:
+            best = (miss, psi2, q, tau)
+    miss, psi2, q2, tau = best
+    if miss > 1e-9:
+        raise GeometryError.single("gear phasing", miss, "< 1e-9", "mm", "no conjugate gear flank through the "
+                                   "pitch point: base cones inconsistent")
+    psr2, phr2 = ranges(Am, d2, -beta, g2, addendum[1], dedendum[1], np.sign(psi2))
+    gear = LogSpiralSurface(Am, d2, -beta, float(tau), psr2, phr2, (float(q2[0]), float(q2[1])))
+    return LogSpiralPair(pinion, gear, int(z1), int(z2), S, target, (float(g1), float(g2)), (float(d1), float(d2)),
+                         float(beta))
