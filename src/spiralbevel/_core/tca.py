@@ -201,10 +201,11 @@ def newton_minnorm(fun_jac, x0, tol, max_iter=30, max_step=None, rcond=1e-10):
     with np.errstate(all="ignore"):
         F, J = fun_jac(x, allidx)
     res = np.max(np.abs(F), axis=-1)
-    res = np.where(np.isfinite(res), res, np.inf)
+    ok0 = np.isfinite(res) & np.all(np.isfinite(J), axis=(-1, -2))
+    res = np.where(ok0, res, np.inf)
     it = 0
-    active = np.isfinite(res) & (res >= tol)
-    blown = ~np.isfinite(res)
+    active = ok0 & (res >= tol)
+    blown = ~ok0
     while it < max_iter and np.any(active):
         it += 1
         idx = allidx[active]
@@ -213,9 +214,20 @@ def newton_minnorm(fun_jac, x0, tol, max_iter=30, max_step=None, rcond=1e-10):
         if max_step is not None:
             sc = np.max(np.abs(dx) / np.asarray(max_step, float), axis=-1, keepdims=True)
             dx = dx / np.maximum(sc, 1.0)
+        x_old = x[idx].copy()
         x[idx] += dx
         with np.errstate(all="ignore"):
             Fn, Jn = fun_jac(x[idx], idx)
+        # backtracking: a step that leaves the surfaces (non-finite residual) is halved, up to 8 times
+        for _ in range(8):
+            off = ~(np.all(np.isfinite(Fn), axis=-1) & np.all(np.isfinite(Jn), axis=(-1, -2)))
+            if not np.any(off):
+                break
+            dx[off] *= 0.5
+            x[idx[off]] = x_old[off] + dx[off]
+            with np.errstate(all="ignore"):
+                Fo, Jo = fun_jac(x[idx[off]], idx[off])
+            Fn[off], Jn[off] = Fo, Jo
         F[idx], J[idx] = Fn, Jn
         r = np.max(np.abs(Fn), axis=-1)
         bad = ~(np.isfinite(r) & np.all(np.isfinite(Jn), axis=(-1, -2)))

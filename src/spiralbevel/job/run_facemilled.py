@@ -25,8 +25,17 @@ def run_facemilled(spec, blank, out, steps, report, summary):
             cx, cc = grids[(m, Side.CONVEX)], grids[(m, Side.CONCAVE)]
             tooth[m] = ((cx.points, cx.normals), fm.rotate_grid(cc.points, cc.normals, rot))
             report["flanks"][m.value]["concave"]["tooth_rotation_deg"] = float(rot * 180.0 / 3.141592653589793)
+    with steps.step("tooth contact analysis"):
+        from .tca import run_pair_tca
+
+        tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids)
     if o.plots:
         with steps.step("plots"):
+            for name, res in tca_results.items():
+                if res is not None:
+                    fig = res.plot(outline1=tca_outlines[name][0], outline2=tca_outlines[name][1])
+                    fig.suptitle(f"TCA, {name} side: {spec.title}")
+                    summary.files.append(outputs.save_figure(fig, out / f"tca_{name}.png"))
             summary.files.append(outputs.axial_section(grids, out, spec.title))
             summary.files.append(outputs.curvature_maps(
                 {k: _Geo(g.points, g.k1, g.k2) for k, g in grids.items()}, out, spec.title))
@@ -36,6 +45,10 @@ def run_facemilled(spec, blank, out, steps, report, summary):
     if o.step:
         with steps.step("STEP"):
             summary.files += outputs.step_files(tooth, out)
+    for name, sec in report["tca"].items():
+        summary.highlights.append(f"TCA {name}: " + (sec["error"] if "error" in sec else
+                                  f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec, "
+                                  f"{len(sec['edge_contact_positions_rad'])} edge-contact positions"))
     for m in fm.MEMBERS:
         for s in fm.SIDES:
             f = flanks[m.value][s.value]

@@ -1,0 +1,76 @@
+"""Face-milled generated flanks as TCA contact surfaces (the ``ContactSurface`` protocol of ``contact_surface.py``).
+
+Parameters are (u, psi_c): the blade parameter (mm) and the cradle angle of generation (rad); the cutter angle that
+satisfies the equation of meshing of generation is solved inside ``ToothFlank.evaluate`` (closed form). The flank may
+be turned about the member axis by ``rotation`` (rad) to phase it in its member frame.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["GeneratedSurface", "phased_for_pair"]
+
+
+class GeneratedSurface:
+    """A :class:`~spiralbevel.generation.flank.ToothFlank` seen by TCA.
+
+    Parameters
+    ----------
+    flank : ToothFlank
+    rotation : float, rad
+        Turn about +z applied to points and normals (member frame).
+    """
+
+    fd_step = (1e-4, 1e-6)
+
+    def __init__(self, flank, rotation: float = 0.0):
+        self.flank = flank
+        self.rotation = float(rotation)
+        c, s = math.cos(self.rotation), math.sin(self.rotation)
+        self._R = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        mp = flank.mean_point()
+        self.reference_params = np.array([mp.u, mp.psi_c])
+        self.mean_point = mp
+
+    def _evaluate(self, params):
+        """FlankPoints at (u, psi_c), and the mask of parameters off the generated surface (no root of the
+        equation of meshing, |disc| > 1), which are evaluated at the reference parameters instead."""
+        params = np.asarray(params, float)
+        u, psi = np.broadcast_arrays(params[..., 0], params[..., 1])
+        off = ~(np.abs(self.flank.generator.contact(u, psi)["disc"]) <= 1.0)
+        if np.any(off):
+            u, psi = np.where(off, self.reference_params[0], u), np.where(off, self.reference_params[1], psi)
+        return self.flank.evaluate(u, psi, curvature=False), off
+
+    def evaluate(self, params):
+        """Points (..., 3) mm and outward normals (..., 3) at ``params (..., 2) = (u, psi_c)``; NaN off the surface,
+        so that solvers see "no surface there" and step back."""
+        fp, off = self._evaluate(params)
+        r, n = fp.points @ self._R.T, fp.normals @ self._R.T
+        if np.any(off):
+            r, n = np.where(off[..., None], np.nan, r), np.where(off[..., None], np.nan, n)
+        return r, n
+
+    def contains(self, params):
+        """True where (u, psi_c) lies on the flank: between toe and heel, above the fillet junction, below the top."""
+        fp, off = self._evaluate(params)
+        ol = self.flank.outline
+        R, h = ol.Rh(fp.points[..., 2], np.hypot(fp.points[..., 0], fp.points[..., 1]))
+        u_j = self.flank.generator.cp["u_j"]
+        u = np.broadcast_to(np.asarray(params, float)[..., 0], off.shape)
+        return ~off & (R >= ol.Ri) & (R <= ol.Re) & (h <= ol.h_face(R)) & (u >= u_j)
+
+
+def phased_for_pair(pinion_flank, gear_flank):
+    """Contact surfaces of a pinion and a gear flank turned so that their mean points meet at zero roll.
+
+    The pinion mean point goes to azimuth 0 of the pinion frame and the gear mean point to azimuth pi of the gear
+    frame: in the pair frame (docs/conventions.md) both then lie on the pitch line at phi1 = phi2 = 0.
+    """
+    mp1, mp2 = pinion_flank.mean_point(), gear_flank.mean_point()
+    a1 = -math.atan2(mp1.point[1], mp1.point[0])
+    a2 = math.pi - math.atan2(mp2.point[1], mp2.point[0])
+    return GeneratedSurface(pinion_flank, a1), GeneratedSurface(gear_flank, a2)
