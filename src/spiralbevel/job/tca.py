@@ -32,17 +32,23 @@ def run_pair_tca(blank, setups, grids, n_positions: int = 41):
         results[name] = res
         outlines[name] = (grids[(Member.PINION, s1)].points @ c1._R.T, grids[(Member.GEAR, s2)].points @ c2._R.T)
         te = res.te_arcsec
+        fin = np.isfinite(te)
+        if not np.any(fin):
+            results[name] = None
+            section[name] = {"pinion_side": s1.value, "gear_side": s2.value, "error": "no contact at any position"}
+            continue
         edge = np.nonzero(res.edge_contact)[0]
         section[name] = {
             "pinion_side": s1.value, "gear_side": s2.value,
             "positions": int(len(te)),
-            "max_transmission_error_arcsec": float(np.max(te)),
-            "min_transmission_error_arcsec": float(np.min(te)),
-            "peak_to_peak_arcsec": float(res.peak_to_peak),
+            "max_transmission_error_arcsec": float(np.max(te[fin])),
+            "min_transmission_error_arcsec": float(np.min(te[fin])),
+            "peak_to_peak_arcsec": float(np.ptp(te[fin])),
+            "no_contact_positions_rad": [float(x) for x in res.phi1[~fin]],
             "transfer_points_rad": [float(x) for x in np.atleast_1d(res.transfer_phi1)],
             "edge_contact_positions_rad": [float(res.phi1[i]) for i in edge],
             "semi_major_axis_mean_mm": _finite_or_none(np.max(res.semi_axes[len(te) // 2])),
-            "pinion_rotation_rad": res.phi1, "transmission_error_arcsec": te,
+            "pinion_rotation_rad": res.phi1[fin], "transmission_error_arcsec": te[fin],
         }
     return results, section, outlines
 
