@@ -59,6 +59,16 @@ def test_report_logspiral_recipe_independent_check(default_run):
         assert np.linalg.norm(n) == pytest.approx(1.0, abs=1e-12)
 
 
+def test_logspiral_pair_tca_line_contact_zero_te(default_run):
+    # issue 2/5: the same TCA engine on the exact log-spiral pair shows line contact and zero TE
+    _, report = default_run
+    for side in ("convex-concave", "concave-convex"):
+        t = report["logspiral"]["tca"][side]
+        assert t["line_contact_positions"] == t["positions"]
+        assert t["max_abs_transmission_error_arcsec"] < 1e-6
+        assert report["logspiral"]["conjugacy"][side.split("-")[0]]["max_distance_mm"] < 1e-9
+
+
 def test_stl_is_readable_and_closed(default_run):
     from spiralbevel.io.stl import read_stl
 

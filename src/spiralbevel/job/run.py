@@ -79,7 +79,7 @@ def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
 
 def _logspiral_steps(spec) -> int:
     o = spec.output
-    return 3 + int(o.plots) + int(o.draft) + int(o.toolpaths) + int(o.stl) + int(o.step)
+    return 4 + int(o.plots) + int(o.draft) + int(o.toolpaths) + int(o.stl) + int(o.step)
 
 
 def _facemilled_steps(spec) -> int:

@@ -24,6 +24,10 @@ def run_logspiral(spec, blank, out, steps, report, summary):
         from .conjugacy import conjugacy_report
 
         report["logspiral"]["conjugacy"] = conjugacy_report(pair)
+    with steps.step("tooth contact analysis"):
+        from .logspiral_tca import logspiral_tca
+
+        _, report["logspiral"]["tca"] = logspiral_tca(pair)
     teeth = {Member.PINION: pair.pinion.teeth, Member.GEAR: pair.gear.teeth}
     tooth = {m: ls.tooth_grids(pair, grids, m) for m in ls.MEMBERS}
     if o.plots:
