@@ -28,7 +28,10 @@ def run_facemilled(spec, blank, out, steps, report, summary):
     with steps.step("tooth contact analysis"):
         from .tca import run_pair_tca
 
+        from .tca import misalignment_sensitivity
+
         tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids)
+        report["tca"]["misalignment_sensitivity"] = misalignment_sensitivity(blank, setups, "drive")
     if o.plots:
         with steps.step("plots"):
             for name, res in tca_results.items():
@@ -45,7 +48,8 @@ def run_facemilled(spec, blank, out, steps, report, summary):
     if o.step:
         with steps.step("STEP"):
             summary.files += outputs.step_files(tooth, out)
-    for name, sec in report["tca"].items():
+    for name in ("drive", "coast"):
+        sec = report["tca"][name]
         summary.highlights.append(f"TCA {name}: " + (sec["error"] if "error" in sec else
                                   f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec, "
                                   f"{len(sec['edge_contact_positions_rad'])} edge-contact positions"))
