@@ -1,0 +1,141 @@
+"""Initial separations of two tooth surfaces along the common normal around a contact point.
+
+A grid of points q = P + s e1 + t e2 lies in the common tangent plane at the unloaded contact point P (normal n0,
+outward from body 1 toward body 2). The line q + zeta n0 meets surface 1 at zeta1 and surface 2 at zeta2; the
+separation is w = zeta2 - zeta1 (mm, >= 0 when the surfaces are apart). Each intersection is one small nonlinear
+system (u, v, zeta), all solved at once by :func:`spiralbevel._core.newton.solve_batched`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from ..._core.newton import solve_batched
+from ...errors import ConvergenceError, DesignError
+
+__all__ = ["SeparationGrid", "surface_separations", "quadratic_separations"]
+
+SurfaceFn = Callable[[np.ndarray, np.ndarray], "tuple[np.ndarray, np.ndarray]"]
+
+
+@dataclass(frozen=True)
+class SeparationGrid:
+    """Separations on a tangent-plane grid.
+
+    Attributes
+    ----------
+    s, t : (ns,), (nt,) float, mm
+        Grid coordinates along e1 and e2.
+    w : (ns, nt) float, mm
+        Separation along n0 (NaN where a surface could not be reached, e.g. outside its domain).
+    points1, points2 : (ns, nt, 3) float, mm
+        Foot points on surfaces 1 and 2.
+    normals1, normals2 : (ns, nt, 3) float
+        Outward unit normals there.
+    params1, params2 : (ns, nt, 2) float
+        Surface parameters of the foot points.
+    """
+
+    s: np.ndarray
+    t: np.ndarray
+    w: np.ndarray
+    points1: np.ndarray
+    points2: np.ndarray
+    normals1: np.ndarray
+    normals2: np.ndarray
+    params1: np.ndarray
+    params2: np.ndarray
+
+
+def _foot(surface, q, n0, uv0, tol):
+    """Intersections of the lines q + zeta n0 with surface(u, v); returns (uv, zeta, ok)."""
+
+    def fun(x):
+        r, _ = surface(x[..., 0], x[..., 1])
+        return r - q - x[..., 2:3] * n0
+
+    x0 = np.concatenate([uv0, np.zeros(uv0.shape[:-1] + (1,))], axis=-1)
+    res = solve_batched(fun, x0, tol=tol, max_iter=40)
+    return res.x[..., :2], res.x[..., 2], res.converged & np.all(np.isfinite(res.x), axis=-1)
+
+
+def surface_separations(surface1: SurfaceFn, surface2: SurfaceFn, point, normal, e1, s, t, uv1, uv2,
+                        tol=1e-11) -> SeparationGrid:
+    """Separations w(s, t) of two surfaces along the common normal (exact surfaces, no quadratic approximation).
+
+    Parameters
+    ----------
+    surface1, surface2 : callable
+        ``surface(u, v) -> (points (..., 3) mm, outward unit normals (..., 3))`` in one common frame.
+    point : (3,) float, mm
+        Unloaded contact point P.
+    normal : (3,) float
+        Unit normal n0 at P, outward from body 1 (toward body 2).
+    e1 : (3,) float
+        First tangent direction (made orthogonal to n0); e2 = n0 x e1.
+    s, t : (ns,), (nt,) float, mm
+        Grid coordinates along e1 and e2.
+    uv1, uv2 : (2,) float
+        Surface parameters of P on each surface (starting guesses).
+    tol : float, mm
+        Residual tolerance of the intersections.
+
+    Returns
+    -------
+    SeparationGrid
+    """
+    P = np.asarray(point, float)
+    n0 = np.asarray(normal, float)
+    n0 = n0 / np.linalg.norm(n0)
+    e1 = np.asarray(e1, float) - np.dot(e1, n0) * n0
+    if np.linalg.norm(e1) < 1e-12:
+        raise DesignError.single("e1", list(np.ravel(e1)), "not parallel to the normal", "-", "separation grid")
+    e1 = e1 / np.linalg.norm(e1)
+    e2 = np.cross(n0, e1)
+    s = np.atleast_1d(np.asarray(s, float))
+    t = np.atleast_1d(np.asarray(t, float))
+    S, Tt = np.meshgrid(s, t, indexing="ij")
+    q = P + S[..., None] * e1 + Tt[..., None] * e2
+    out = {}
+    for k, (surf, uv) in enumerate(((surface1, uv1), (surface2, uv2)), start=1):
+        uv = np.asarray(uv, float)
+        r, _ = surf(np.array([uv[0]]), np.array([uv[1]]))
+        if np.linalg.norm(r[0] - P) > 1e-6 * (1 + np.linalg.norm(P)):
+            raise DesignError.single(f"uv{k}", list(uv), "parameters of the contact point", "-",
+                                     f"surface {k} at uv{k} is {np.linalg.norm(r[0] - P):.3e} mm from the point")
+        # linear first guess of the parameters from the tangent plane at P
+        h = 1e-6 * (1 + np.abs(uv))
+        ru = (surf(np.array([uv[0] + h[0]]), np.array([uv[1]]))[0][0] - r[0]) / h[0]
+        rv = (surf(np.array([uv[0]]), np.array([uv[1] + h[1]]))[0][0] - r[0]) / h[1]
+        J = np.stack([ru, rv], axis=1)
+        duv = np.linalg.lstsq(J, (q - P).reshape(-1, 3).T, rcond=None)[0].T.reshape(q.shape[:-1] + (2,))
+        uvq, zeta, ok = _foot(surf, q, n0, uv + duv, tol)
+        pts, nrm = surf(uvq[..., 0], uvq[..., 1])
+        zeta = np.where(ok, zeta, np.nan)
+        out[k] = (uvq, zeta, pts, nrm)
+    w = out[2][1] - out[1][1]
+    if not np.isfinite(w[np.argmin(np.abs(s)), np.argmin(np.abs(t))]):
+        raise ConvergenceError("separation at the contact point could not be computed", 40, float("nan"))
+    return SeparationGrid(s, t, w, out[1][2], out[2][2], out[1][3], out[2][3], out[1][0], out[2][0])
+
+
+def quadratic_separations(curvature, s, t) -> np.ndarray:
+    """Second-order separation w = 1/2 [s t] K [s t]^T on a tangent-plane grid [mm].
+
+    Parameters
+    ----------
+    curvature : (2, 2) float, 1/mm
+        Relative normal-curvature matrix K = K1 + K2 in the (e1, e2) basis, convex = positive for each body
+        (docs/conventions.md), so K is positive semi-definite for surfaces that touch at one point.
+    s, t : (ns,), (nt,) float, mm
+
+    Returns
+    -------
+    (ns, nt) float, mm
+    """
+    K = np.asarray(curvature, float)
+    S, Tt = np.meshgrid(np.asarray(s, float), np.asarray(t, float), indexing="ij")
+    return 0.5 * (K[0, 0] * S**2 + (K[0, 1] + K[1, 0]) * S * Tt + K[1, 1] * Tt**2)
