@@ -229,6 +229,9 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     kk = np.broadcast_to(pairs, (n, P)).reshape(-1)
     phi2 = prob.gear_angle(x[:, 4], kk)
     te = drive * (-(phi2 - phi2_mean) - ratio * (np.repeat(phi1, P) - phi1_mean))
+    # a "contact" whose TE exceeds half an angular pitch of the gear belongs to no tooth pair of this mesh: Newton
+    # converged to a spurious intersection of the analytically extended surfaces
+    valid &= np.abs(te) < np.pi / z2
     inside = surface_contains(pinion, x[:, 0:2]) & surface_contains(gear, x[:, 2:4])
     sp = np.full(n * P, int(ContactStatus.NO_CONTACT))
     sp[valid & inside & ~line] = ContactStatus.OK
