@@ -13,7 +13,7 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_valida
 from .angles import parse_angle_deg
 
 __all__ = ["Angle", "GearSetSpec", "DepthSpec", "FlankSpec", "ManufacturingSpec", "OutputSpec", "CutterSpec",
-           "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "DesignFile"]
+           "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "SynthesisSpec", "DesignFile"]
 
 Angle = Annotated[float, BeforeValidator(parse_angle_deg)]
 
@@ -143,6 +143,18 @@ class FaceMillingSpec(_Model):
     gear_concave: FlankMachineSpec = FlankMachineSpec()
 
 
+class SynthesisSpec(_Model):
+    """Local synthesis of the pinion settings from the gear's (seed 001 §4; Litvin)."""
+
+    sides: tuple[Literal["drive", "coast"], ...] = _f(("drive",), description="sides whose pinion flank is synthesized")
+    path_direction: Angle = _f(6.0, unit="deg", gt=-60.0, lt=60.0,
+                               description="eta on the gear, from the profile direction, + toward the heel")
+    semi_major_axis: float = _f(3.7, unit="mm", gt=0.0, le=50.0, description="contact ellipse a at the mean point")
+    te_magnitude: float = _f(3.0, unit="arcsec", gt=0.0, le=600.0, description="parabolic TE over one mesh cycle")
+    approach: float = _f(0.00635, unit="mm", gt=0.0, le=0.1, description="elastic approach of the ellipse")
+    free: Literal["offset", "modified-roll", "fixed-blade"] = _f("offset", description="settings solved for")
+
+
 class DesignFile(_Model):
     """A whole spiralbevel design file."""
 
@@ -150,5 +162,6 @@ class DesignFile(_Model):
     gear_set: GearSetSpec
     flank: FlankSpec = FlankSpec()
     face_milling: FaceMillingSpec = FaceMillingSpec()
+    synthesis: Optional[SynthesisSpec] = None
     manufacturing: ManufacturingSpec = ManufacturingSpec()
     output: OutputSpec = OutputSpec()

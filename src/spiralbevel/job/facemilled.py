@@ -70,8 +70,48 @@ def _given_settings(ms):
         modified_roll=ms.modified_roll, blank_offset_poly=ms.blank_offset_poly)
 
 
-def setup_flanks(spec, blank):
-    """Cutters, settings and generated flanks of all four member sides: {(member, side): FlankSetup}."""
+def setup_flanks(spec, blank, with_synthesis: bool = False):
+    """Cutters, settings and generated flanks of all four member sides: {(member, side): FlankSetup}.
+
+    With a ``[synthesis]`` section the pinion flank of each listed side is then replaced by local synthesis from the
+    mating gear flank (:func:`synthesize_sides`); ``with_synthesis`` also returns {side name: SynthesisResult}.
+    """
+    out = _basic_setups(spec, blank)
+    synth = {}
+    if spec.synthesis is not None:
+        new, synth = synthesize_sides(spec, blank, out)
+        out.update(new)
+    return (out, synth) if with_synthesis else out
+
+
+#: design-file names of the pair sides: (pinion side, gear side)
+PAIR_SIDES = {"drive": (Side.CONCAVE, Side.CONVEX), "coast": (Side.CONVEX, Side.CONCAVE)}
+_FREE = {"offset": "FREE_OFFSET", "modified-roll": "FREE_MODIFIED_ROLL", "fixed-blade": "FREE_FIXED_BLADE"}
+
+
+def synthesize_sides(spec, blank, setups):
+    """Local synthesis of the pinion flank of each side listed in ``spec.synthesis``.
+
+    Returns ({(PINION, side): FlankSetup}, {side name: SynthesisResult}).
+    """
+    from ..meshing import synthesis as syn
+
+    sy = spec.synthesis
+    new, results = {}, {}
+    for name in sy.sides:
+        s1, s2 = PAIR_SIDES[name]
+        gear = setups[(Member.GEAR, s2)]
+        res = syn.synthesize_pinion(
+            gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
+            semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * math.pi / 648000.0,
+            approach=sy.approach, free=getattr(syn, _FREE[sy.free]))
+        new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
+                                              res.pinion_flank, f"local synthesis ({name} side)")
+        results[name] = res
+    return new, results
+
+
+def _basic_setups(spec, blank):
     from ..generation.flank import generate_flank
     from ..machine.settings import MachineSettings
 

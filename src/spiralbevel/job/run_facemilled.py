@@ -12,7 +12,9 @@ def run_facemilled(spec, blank, out, steps, report, summary):
     o = spec.output
     n_face, n_profile = o.grid
     with steps.step("cutters and machine settings"):
-        setups = fm.setup_flanks(spec, blank)
+        setups, synth = fm.setup_flanks(spec, blank, with_synthesis=True)
+        if synth:
+            report["synthesis"] = {name: r.summary() for name, r in synth.items()}
     with steps.step("generated flanks and curvatures"):
         grids = {k: st.flank.grid(n_face, n_profile) for k, st in setups.items()}
         flanks, machines = fm.flank_report(setups)
@@ -32,6 +34,13 @@ def run_facemilled(spec, blank, out, steps, report, summary):
 
         tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids)
         report["tca"]["misalignment_sensitivity"] = misalignment_sensitivity(blank, setups, "drive")
+    with steps.step("ease-off and measurement grids"):
+        from .inspection import easeoff_maps, measurement_files
+
+        report["easeoff"], files = easeoff_maps(blank, setups, out, o.plots)
+        summary.files += files
+        report["measurement"], files = measurement_files(setups, out)
+        summary.files += files
     if o.plots:
         with steps.step("plots"):
             for name, res in tca_results.items():

@@ -1,0 +1,55 @@
+"""End to end: seed 001 gear (Table 4) with the pinion drive side by local synthesis (Table 2 design data)."""
+
+import json
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from spiralbevel.cli import app
+from spiralbevel.io.design_file import default_design_text
+
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def syn_run(tmp_path_factory):
+    d = tmp_path_factory.mktemp("syn")
+    f = d / "syn.toml"
+    f.write_text(default_design_text("aviation_23x65_synthesized.toml").replace("grid = [31, 15]", "grid = [15, 9]"))
+    out = d / "out"
+    result = runner.invoke(app, ["run", str(f), "-o", str(out), "-q"])
+    assert result.exit_code == 0, result.output
+    return out, json.loads((out / "report.json").read_text())
+
+
+def test_synthesis_reported_with_design_values(syn_run):
+    _, report = syn_run
+    s = report["synthesis"]["drive"]
+    assert s["eta"] == pytest.approx(6.0, abs=1e-6)
+    assert s["semi_axes"][0] == pytest.approx(3.7, rel=1e-6)
+    assert s["te_magnitude_arcsec"] == pytest.approx(3.0, rel=1e-6)
+    assert report["machine_settings"]["pinion"]["concave"]["source"].startswith("local synthesis")
+
+
+def test_tca_of_synthesized_pair(syn_run):
+    _, report = syn_run
+    t = report["tca"]["drive"]
+    te = np.array(t["transmission_error_arcsec"])
+    phi = np.array(t["pinion_rotation_rad"])
+    assert t["max_transmission_error_arcsec"] == pytest.approx(0.0, abs=1e-6)   # the mean contact point
+    # near the mean point the TE is the designed parabola: 3" over one mesh cycle 2 pi / 23 (Table 2)
+    near = np.abs(phi) < 0.05
+    x = phi[near]
+    a2 = np.polyfit(x, te[near], 2)[0]
+    assert a2 == pytest.approx(-3.0 / (np.pi / 23) ** 2, rel=0.05)
+
+
+def test_easeoff_is_clearance_and_measurement_grids(syn_run):
+    out, report = syn_run
+    e = report["easeoff"]["drive"]
+    assert e["min_mm"] > -1e-6 and e["max_mm"] > 0.01   # crowned: clearance everywhere but the mean point
+    for name in report["measurement"].values():
+        if isinstance(name, str) and name.endswith(".csv"):
+            lines = (out / name).read_text().strip().splitlines()
+            assert len([ln for ln in lines if not ln.startswith("#")]) == 1 + 45
