@@ -132,12 +132,20 @@ def as_points(values) -> np.ndarray:
     return np.asarray(values, float)
 
 
-def axial_section(grids, out: Path, title: str) -> str:
-    """PNG of every generated flank grid drawn in its member's axial section (axial position vs radius)."""
+def axial_section(grids, out: Path, title: str, tooth=None, blank=None) -> str:
+    """PNG of every generated flank grid drawn in its member's axial section (axial position vs radius), with the
+    blank outline; with ``tooth`` ({member: (convex, concave) grids of one tooth}) also the tooth profile on the
+    sphere of the mean cone distance."""
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.8))
-    for ax, member in zip(axes, (Member.PINION, Member.GEAR)):
+    rows = 2 if tooth is not None else 1
+    fig, axes = plt.subplots(rows, 2, figsize=(11, 4.6 * rows), squeeze=False)
+    if tooth is not None:
+        for ax, member in zip(axes[1], (Member.PINION, Member.GEAR)):
+            _tooth_profile(ax, member, tooth[member], blank.Rm)
+    for ax, member in zip(axes[0], (Member.PINION, Member.GEAR)):
+        if blank is not None:
+            _blank_outline(ax, blank, member)
         for side, color in ((Side.CONVEX, "tab:blue"), (Side.CONCAVE, "tab:red")):
             g = grids.get((member, side))
             if g is None:
@@ -154,3 +162,40 @@ def axial_section(grids, out: Path, title: str) -> str:
     fig.suptitle(title)
     fig.tight_layout()
     return save_figure(fig, out / "axial_section.png")
+
+
+def _blank_outline(ax, blank, member):
+    """Face cone, root cone, toe and heel of the blank in the axial section (front/back cones normal to the pitch
+    cone), dashed."""
+    i = member.index
+    d, da, df = (getattr(blank, f"{n}{i}") for n in ("delta", "delta_a", "delta_f"))
+    Ri, Re, Rm = getattr(blank, f"Ri{i}"), getattr(blank, f"Re{i}"), blank.Rm
+    ham, hfm = getattr(blank, f"ham{i}"), getattr(blank, f"hfm{i}")
+    R = np.array([Ri, Re])
+    top = ham + (R - Rm) * math.tan(da - d)
+    root = -hfm - (R - Rm) * math.tan(d - df)
+
+    def zr(R, h):
+        return R * math.cos(d) - h * math.sin(d), R * math.sin(d) + h * math.cos(d)
+
+    corners = [zr(R[0], root[0]), zr(R[1], root[1]), zr(R[1], top[1]), zr(R[0], top[0]), zr(R[0], root[0])]
+    ax.plot([c[0] for c in corners], [c[1] for c in corners], "k--", lw=0.8, label="blank")
+
+
+def _tooth_profile(ax, member, grids, radius):
+    """Both flank profiles of one tooth on the sphere |r| = radius, in (arc from the tooth centre, radius) mm."""
+    pts = [_sphere_profile(np.asarray(g[0], float), radius) for g in grids]
+    if any(len(p) < 2 for p in pts):
+        ax.set_visible(False)
+        return
+    allp = np.concatenate(pts)
+    az0 = float(np.angle(np.mean(np.exp(1j * np.arctan2(allp[:, 1], allp[:, 0])))))
+    for p, side, color in zip(pts, (Side.CONVEX, Side.CONCAVE), ("tab:blue", "tab:red")):
+        az = np.angle(np.exp(1j * (np.arctan2(p[:, 1], p[:, 0]) - az0)))
+        rr = np.hypot(p[:, 0], p[:, 1])
+        ax.plot(az * rr, rr, color=color, label=side.value)
+    ax.set_title(f"{member.value}: tooth profile on the sphere R = {radius:.3f} mm")
+    ax.set_xlabel("arc from the tooth centre [mm]")
+    ax.set_ylabel("radius from the axis [mm]")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.legend(fontsize=8)

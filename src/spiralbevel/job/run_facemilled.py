@@ -48,7 +48,7 @@ def run_facemilled(spec, blank, out, steps, report, summary):
                     fig = res.plot(outline1=tca_outlines[name][0], outline2=tca_outlines[name][1])
                     fig.suptitle(f"TCA, {name} side: {spec.title}")
                     summary.files.append(outputs.save_figure(fig, out / f"tca_{name}.png"))
-            summary.files.append(outputs.axial_section(grids, out, spec.title))
+            summary.files.append(outputs.axial_section(grids, out, spec.title, tooth, blank))
             summary.files.append(outputs.curvature_maps(
                 {k: _Geo(g.points, g.k1, g.k2) for k, g in grids.items()}, out, spec.title))
     if o.stl:
