@@ -19,6 +19,24 @@ def save_figure(fig, path: Path) -> str:
     return path.name
 
 
+def draft_maps(results, out: Path) -> str:
+    """PNG of the forging-draft maps of several flanks: ``results`` is a list of (label, DraftResult)."""
+    import matplotlib.pyplot as plt
+
+    from ..viz.draft_plot import plot_draft
+
+    n = len(results)
+    cols = 2
+    fig, axes = plt.subplots((n + 1) // cols, cols, figsize=(11, 4.2 * ((n + 1) // cols)), squeeze=False)
+    for ax, (label, r) in zip(axes.flat, results):
+        plot_draft(r, ax=ax)
+        ax.set_title(f"{label}: failing area {100 * r.failing_area_fraction:.1f} %", fontsize=9)
+    for ax in list(axes.flat)[n:]:
+        ax.set_visible(False)
+    fig.tight_layout()
+    return save_figure(fig, out / "draft_map.png")
+
+
 def curvature_maps(grids, out: Path, title: str) -> str:
     """PNG of k1 and k2 over every flank, drawn on the projected tooth."""
     from ..viz.flank_maps import plot_flank_fields

@@ -75,14 +75,11 @@ def _draft(spec, pair, out, summary, plots):
                 "passes": bool(r.passes),
             }
     if plots:
-        from ..viz.draft_plot import plot_draft_maps
-
-        summary.files.append(outputs.save_figure(plot_draft_maps(results), out / "draft_map.png"))
+        summary.files.append(outputs.draft_maps(results, out))
     return section
 
 
 def _toolpaths(spec, pair, out, summary):
-    from .._core.rotations import rot_z
     from ..io.toolpath_csv import write_toolpath_csv
     from ..manufacturing.toolpath import plan_toolpath
 
@@ -93,7 +90,7 @@ def _toolpaths(spec, pair, out, summary):
             f = pair.flank(m, s)
             tp = plan_toolpath(f.surface, f.domain, mf.ball_radius, mf.scallop_height)
             name = f"toolpath_{m.value}_{s.value}.csv"
-            write_toolpath_csv(out / name, tp, rotation=rot_z(f.rotation))
+            write_toolpath_csv(out / name, tp.rotated(f.rotation))
             summary.files.append(name)
             section["flanks"][f"{m.value}_{s.value}"] = {
                 "file": name, "passes": len(tp), "points": int(sum(len(p.center) for p in tp.paths)),

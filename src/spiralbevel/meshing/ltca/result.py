@@ -40,7 +40,9 @@ class LTCAResult:
     pressure : list of (n_i,) float, N/mm^2
         Mean pressure on the cell of each point.
     points1, points2 : list of (n_i, 3) float, mm
-        The same points in the pinion and gear member frames (reference tooth), for flank maps.
+        The same points in the pinion and gear member frames, for flank maps: on the reference tooth when produced by
+        :meth:`~spiralbevel.meshing.ltca.from_tca.LTCAModel.run` / ``loaded_tca``; in the FE segment frame (the
+        pair's tooth ``tooth_*``) when :func:`~spiralbevel.meshing.ltca.ltca.run_ltca` is called directly.
     dtheta : (n_pos,) float, rad
         Gear lag that closes the gaps (loaded); the loaded TE is -dtheta.
     approach_torque : float or None, N mm

@@ -16,7 +16,7 @@ import numpy as np
 from ..._core.newton import solve_batched
 from ...errors import ConvergenceError, DesignError
 
-__all__ = ["SeparationGrid", "surface_separations", "quadratic_separations"]
+__all__ = ["SeparationGrid", "surface_separations", "posed_separations", "quadratic_separations"]
 
 SurfaceFn = Callable[[np.ndarray, np.ndarray], "tuple[np.ndarray, np.ndarray]"]
 
@@ -139,3 +139,101 @@ def quadratic_separations(curvature, s, t) -> np.ndarray:
     K = np.asarray(curvature, float)
     S, Tt = np.meshgrid(np.asarray(s, float), np.asarray(t, float), indexing="ij")
     return 0.5 * (K[0, 0] * S**2 + (K[0, 1] + K[1, 0]) * S * Tt + K[1, 1] * Tt**2)
+
+
+def posed_separations(surface1, surface2, poses1, poses2, uv1, uv2, point, normal, e1, s, t,
+                      tol=1e-10) -> SeparationGrid:
+    """Separations of many contacts at once, each between two member-frame surfaces placed by its own poses.
+
+    The batched form of :func:`surface_separations` for the pairs of a mesh cycle: contact m has the pinion
+    (surface 1) placed by ``poses1[m] = (R, o)`` (fixed point = o + R r) and the gear by ``poses2[m]``; one Newton
+    solve (:func:`spiralbevel._core.newton.solve_batched`, Jacobian from the surface derivatives) covers every
+    contact and grid point.
+
+    Parameters
+    ----------
+    surface1, surface2 : ContactSurface
+        Member-frame surfaces (``evaluate(params) -> (r, n_out)``; ``derivatives`` used when present).
+    poses1, poses2 : ((m, 3, 3), (m, 3)) float
+        Rotations and origins member -> common frame.
+    uv1, uv2 : (m, 2) float
+        Surface parameters of the contact points.
+    point, normal, e1 : (m, 3) float
+        Contact points (mm), unit normals outward from body 1, and first tangent directions (common frame).
+    s, t : (ns,), (nt,) float, mm
+        Grid coordinates along e1 and e2 = normal x e1.
+    tol : float, mm
+        Residual tolerance of the intersections.
+
+    Returns
+    -------
+    SeparationGrid
+        With a leading contact axis: w (m, ns, nt), points/normals (m, ns, nt, 3) in the common frame, params
+        (m, ns, nt, 2); NaN where a surface could not be reached.
+    """
+    from ..contact_surface import surface_derivatives
+
+    P = np.asarray(point, float)
+    n0 = np.asarray(normal, float)
+    n0 = n0 / np.linalg.norm(n0, axis=-1, keepdims=True)
+    e1 = np.asarray(e1, float)
+    e1 = e1 - np.sum(e1 * n0, -1, keepdims=True) * n0
+    e1 = e1 / np.linalg.norm(e1, axis=-1, keepdims=True)
+    e2 = np.cross(n0, e1)
+    s = np.atleast_1d(np.asarray(s, float))
+    t = np.atleast_1d(np.asarray(t, float))
+    S, Tt = np.meshgrid(s, t, indexing="ij")
+    q = P[:, None, None] + S[None, ..., None] * e1[:, None, None] + Tt[None, ..., None] * e2[:, None, None]
+    shape = q.shape[:-1]
+    N = int(np.prod(shape))
+    qf = q.reshape(N, 3)
+    nf = np.broadcast_to(n0[:, None, None, :], q.shape).reshape(N, 3)
+    out = []
+    for surf, (R, o), uv in ((surface1, poses1, uv1), (surface2, poses2, uv2)):
+        R = np.asarray(R, float)
+        o = np.asarray(o, float).reshape(-1, 3)
+        uv = np.asarray(uv, float)
+        with np.errstate(all="ignore"):
+            _, _, dr0, _ = surface_derivatives(surf, uv)
+        J0 = np.einsum("mij,mjk->mik", R, dr0)  # (m, 3, 2)
+        duv = np.einsum("mij,mabj->mabi", np.linalg.pinv(J0), q - P[:, None, None])
+        x0 = np.concatenate([uv[:, None, None] + duv, np.zeros(shape + (1,))], -1).reshape(N, 3)
+        Rf = np.broadcast_to(R[:, None, None], shape + (3, 3)).reshape(N, 3, 3)
+        of = np.broadcast_to(o[:, None, None], q.shape).reshape(N, 3)
+        x, ok = _posed_newton(surf, Rf, of, qf, nf, x0, tol)
+        with np.errstate(all="ignore"):
+            r, nrm = surf.evaluate(x[:, :2])
+        pts = of + np.einsum("nij,nj->ni", Rf, r)
+        nrm = np.einsum("nij,nj->ni", Rf, nrm)
+        out.append((x[:, :2].reshape(shape + (2,)), np.where(ok, x[:, 2], np.nan).reshape(shape),
+                    pts.reshape(q.shape), nrm.reshape(q.shape)))
+    w = out[1][1] - out[0][1]
+    return SeparationGrid(s, t, w, out[0][2], out[1][2], out[0][3], out[1][3], out[0][0], out[1][0])
+
+
+
+def _posed_newton(surf, R, o, q, n0, x, tol, max_iter=30, diverged=1e3):
+    """Newton on o + R r(u, v) - q - zeta n0 = 0 for flat batches, iterating only the unconverged systems and
+    dropping those that leave the surface (NaN) or run away (residual > ``diverged`` mm)."""
+    from ..contact_surface import surface_derivatives
+
+    x = np.array(x, float)
+    ok = np.zeros(len(x), bool)
+    act = np.arange(len(x))
+    with np.errstate(all="ignore"):
+        for _ in range(max_iter + 1):
+            if act.size == 0:
+                break
+            r, _, dr, _ = surface_derivatives(surf, x[act, :2])
+            f = o[act] + np.einsum("nij,nj->ni", R[act], r) - q[act] - x[act, 2:3] * n0[act]
+            res = np.max(np.abs(f), axis=-1)
+            done = res < tol
+            ok[act[done]] = True
+            keep = ~done & np.isfinite(res) & (res < diverged)
+            act, f, dr = act[keep], f[keep], dr[keep]
+            if act.size == 0:
+                break
+            J = np.concatenate([np.einsum("nij,njk->nik", R[act], dr), -n0[act][..., None]], -1)
+            dx = np.linalg.solve(J, -f[..., None])[..., 0]
+            x[act] += np.where(np.isfinite(dx), dx, 0.0)
+    return x, ok

@@ -1,0 +1,70 @@
+"""Map of the forging-draft result over the flank's parameter domain (seed 000 Fig. 8, corrected)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["plot_draft"]
+
+
+def plot_draft(result, ax=None, coords: str = "varphi"):
+    """Draw draftable / failing regions of a :class:`~spiralbevel.manufacturing.draft.DraftResult`.
+
+    Parameters
+    ----------
+    result : DraftResult
+        From :func:`spiralbevel.manufacturing.draft.draft_map`.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; a new figure is made when omitted.
+    coords : {"varphi", "psi"}
+        Horizontal coordinate: the rolling angle varphi (the domain is a parallelogram, as in seed 000 Fig. 8) or
+        psi = (varphi - phi) sin(delta) (a rectangle). The vertical coordinate is phi.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Notes
+    -----
+    Colours: green = draftable (n_out · v_d <= 0), red = fails. The black line is the zero contour of n_out · v_d
+    from the grid; the dashed line is the analytic boundary |varphi - phi| = |beta| / sin(delta) where it exists
+    (die direction along ±z, ERRATA §0.2 item 24). Angles are shown in degrees.
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    if coords not in ("varphi", "psi"):
+        from ..errors import DesignError
+
+        raise DesignError.single("coords", coords, "'varphi' or 'psi'", "-")
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(6.0, 4.5))
+    else:
+        fig = ax.figure
+    deg = 180.0 / np.pi
+    x = (result.varphi if coords == "varphi" else result.psi) * deg
+    y = result.phi * deg
+    fail = (~result.draftable).astype(float)
+    ax.pcolormesh(x, y, fail, shading="gouraud", cmap=ListedColormap(["#7fc97f", "#e3504a"]), vmin=0.0, vmax=1.0)
+    g = result.normal_dot_die
+    handles = [Patch(color="#7fc97f", label="draftable"), Patch(color="#e3504a", label="fails")]
+    if g.min() < 0 < g.max():
+        ax.contour(x, y, g, levels=[0.0], colors="k", linewidths=1.0)
+        handles.append(plt.Line2D([], [], color="k", lw=1.0, label="n_out·v_d = 0 (grid)"))
+    if result.boundary is not None:
+        bx = result.boundary[:, 0] if coords == "varphi" else np.full(2, result.boundary_psi)
+        ax.plot(bx * deg, result.boundary[:, 1] * deg, "--", color="navy", lw=1.5)
+        handles.append(plt.Line2D([], [], color="navy", ls="--", label="|φ−ϕ| = |β|/sin δ (analytic)"))
+    # domain outline
+    for row in (0, -1):
+        ax.plot(x[row], y[row], color="k", lw=0.6)
+    for col in (0, -1):
+        ax.plot(x[:, col], y[:, col], color="k", lw=0.6)
+    ax.set_xlabel("rolling angle φ [deg]" if coords == "varphi" else "ψ = (φ − ϕ) sin δ [deg]")
+    ax.set_ylabel("spiral parameter ϕ [deg]")
+    v = result.die_direction
+    ax.set_title(f"Forging draft, {result.side.value} flank, v_d = ({v[0]:.3g}, {v[1]:.3g}, {v[2]:.3g}): "
+                 f"{100 * result.failing_area_fraction:.2f}% of area fails", fontsize=9)
+    ax.legend(handles=handles, fontsize=8, loc="best")
+    return fig
