@@ -104,15 +104,72 @@ def roll(psi, mp):
 
 
 def offset(psi, mp):
-    """Blank offset E_m(psi_c) and its first two derivatives w.r.t. psi_c (polynomial in psi_c)."""
+    """Blank offset E_m(psi_c) and its first two derivatives w.r.t. psi_c (polynomial in psi_c).
+
+    Optional additive terms (absent keys change nothing): ``mp["E_table"] = (nodes, values[, second])``, a
+    piecewise-linear or cubic-spline law (see :func:`table_offset`), and ``mp["E_rate"]``, a linear term E_rate psi_c whose value may be an array that
+    broadcasts with ``psi`` (batched solvers give every system its own offset rate; ``mp["E"]`` may then be an array
+    too).
+    """
     p = np.asarray(psi, dtype=float)
     c = mp["E_poly"]
     if not c:
         z = np.zeros_like(p)
-        return z + mp["E"], z, z
-    c = np.concatenate([[mp["E"]], np.asarray(c, float)])
-    P = np.polynomial.polynomial
-    return P.polyval(p, c), P.polyval(p, P.polyder(c)), P.polyval(p, P.polyder(c, 2))
+        E, dE, ddE = z + mp["E"], z, z
+    else:
+        c = np.concatenate([[mp["E"]], np.asarray(c, float)])
+        P = np.polynomial.polynomial
+        E, dE, ddE = P.polyval(p, c), P.polyval(p, P.polyder(c)), P.polyval(p, P.polyder(c, 2))
+    table = mp.get("E_table")
+    if table is not None and len(table[0]):
+        t, dt, ddt = table_offset(p, *table)
+        E, dE, ddE = E + t, dE + dt, ddE + ddt
+    rate = mp.get("E_rate")
+    if rate is not None:
+        E, dE = E + rate * p, dE + rate
+    return E, dE, ddE
+
+
+def table_offset(psi, nodes, values, second=None):
+    """Offset law through (nodes, values): piecewise linear, or a cubic spline with the given second derivatives.
+
+    Linear (``second`` None): at a node the slope of the segment on the side of psi_c = 0 is used (the side the law
+    is built from, outward from the mean contact point, seed 001 §4.3.1 steps 2-3); at psi_c = 0 itself, the segment
+    below; the second derivative is reported as zero. Cubic: on [x_i, x_i+1] with t = psi - x_i, h = x_i+1 - x_i,
+    E = y_i + b_i t + M_i t^2/2 + (M_i+1 - M_i) t^3/(6 h), b_i = (y_i+1 - y_i)/h - h (2 M_i + M_i+1)/6 (C2 when M are
+    the spline's moments). Both continue linearly beyond the end nodes with the end value and slope.
+
+    Parameters
+    ----------
+    psi : (...) float, rad
+    nodes : (m,) float, rad, strictly increasing, m >= 2
+    values : (m,) float, mm
+    second : (m,) float, mm/rad^2, optional
+
+    Returns
+    -------
+    E, dE, ddE : (...) float, mm, mm/rad and mm/rad^2
+    """
+    psi = np.asarray(psi, dtype=float)
+    x, y = np.asarray(nodes, float), np.asarray(values, float)
+    if second is None:
+        hi = np.where(psi >= 0.0, np.searchsorted(x, psi, side="left"), np.searchsorted(x, psi, side="right"))
+        i = np.clip(hi - 1, 0, x.size - 2)
+        slope = (y[i + 1] - y[i]) / (x[i + 1] - x[i])
+        return y[i] + slope * (psi - x[i]), slope, np.zeros_like(slope)
+    M = np.asarray(second, float)
+    h = np.diff(x)
+    b = np.diff(y) / h - h * (2 * M[:-1] + M[1:]) / 6
+    i = np.clip(np.searchsorted(x, psi, side="right") - 1, 0, x.size - 2)
+    t = np.clip(psi, x[0], x[-1]) - x[i]
+    k = (M[i + 1] - M[i]) / h[i]
+    E = y[i] + t * (b[i] + t * (M[i] / 2 + t * k / 6))
+    dE = b[i] + t * (M[i] + t * k / 2)
+    ddE = M[i] + t * k
+    out = (psi < x[0]) | (psi > x[-1])          # linear continuation with the end value and slope
+    E = E + np.where(out, dE * (psi - np.clip(psi, x[0], x[-1])), 0.0)
+    ddE = np.where(out, 0.0, ddE)
+    return E, dE, ddE
 
 
 def cross(a, b):

@@ -53,6 +53,13 @@ class MachineSettings:
         psi_c in rad. Up to four coefficients, missing ones are 0.
     blank_offset_poly : tuple of float, mm
         (e1, e2, ...): E_m(psi_c) = E_m + e1 psi_c + e2 psi_c^2 + ... (variable blank offset; psi_c in rad).
+    blank_offset_table : tuple, optional
+        ``((psi_1, ..., psi_m), (dE_1, ..., dE_m))``: psi_c nodes (rad, strictly increasing, m >= 2) and blank-offset
+        increments (mm) interpolated linearly between them and extrapolated linearly beyond, added to the constant and
+        polynomial parts (the instantaneous blank offset of seed 001 §4.3.1 step 3). dE_m/dt = (dE_m/dpsi_c) omega_c
+        enters the relative velocity (ERRATA §1.1 Eq. (15)); at a node the slope of the segment on the side of
+        psi_c = 0 is used. A third tuple ``(M_1, ..., M_m)`` (mm/rad^2) of second derivatives at the nodes makes it a
+        cubic spline (``spiralbevel._core.generation.table_offset``). Empty: no table.
     """
 
     radial_setting: float
@@ -64,11 +71,14 @@ class MachineSettings:
     ratio_of_roll: float = 1.0
     modified_roll: tuple = field(default=())
     blank_offset_poly: tuple = field(default=())
+    blank_offset_table: tuple = field(default=())
 
     def __post_init__(self):
         object.__setattr__(self, "modified_roll", tuple(float(c) for c in self.modified_roll))
         object.__setattr__(self, "blank_offset_poly", tuple(float(c) for c in self.blank_offset_poly))
         p = []
+        table = _check_table(self.blank_offset_table, p)
+        object.__setattr__(self, "blank_offset_table", table)
 
         def fin(name, val, ok, allowed, unit):
             if not (isinstance(val, (int, float)) and math.isfinite(val) and ok(val)):
@@ -155,7 +165,10 @@ class MachineSettings:
         return dict(S=float(self.radial_setting), q=float(self.cradle_angle), gamma=float(self.machine_root_angle),
                     XD=float(self.machine_centre_to_back), XB=float(self.sliding_base), E=-float(self.blank_offset),
                     m=float(self.ratio_of_roll), roll=tuple(self.modified_roll),
-                    E_poly=tuple(-c for c in self.blank_offset_poly))
+                    E_poly=tuple(-c for c in self.blank_offset_poly),
+                    E_table=(self.blank_offset_table[0],) + tuple(tuple(-v for v in q)
+                                                                  for q in self.blank_offset_table[1:])
+                    if self.blank_offset_table else None)
 
     # ------------------------------------------------------------------------------------------------------------
     def to_dict(self, degrees: bool = True) -> dict:
@@ -166,6 +179,7 @@ class MachineSettings:
                 d[k] = math.degrees(d[k])
         d["modified_roll"] = list(self.modified_roll)
         d["blank_offset_poly"] = list(self.blank_offset_poly)
+        d["blank_offset_table"] = [list(t) for t in self.blank_offset_table]
         return d
 
     def summary_rows(self, cutter=None, member=None, side=None) -> list[tuple[str, str, str]]:
@@ -182,6 +196,9 @@ class MachineSettings:
             rows.append((f"Modified roll {n}", f"{c:.6g}", "-"))
         for k, c in enumerate(self.blank_offset_poly, start=1):
             rows.append((f"Blank offset coefficient e{k} (psi_c^{k})", f"{c:.6g}", "mm"))
+        if self.blank_offset_table:
+            for psi, dE in zip(*self.blank_offset_table[:2]):
+                rows.append((f"Blank offset increment at psi_c = {math.degrees(psi):.4f} deg", f"{dE:.6g}", "mm"))
         if cutter is not None:
             rows += [("Cutter blade", cutter.blade.value, ""),
                      ("Cutter point radius R_h", f"{cutter.point_radius:.4f}", "mm"),
@@ -191,6 +208,23 @@ class MachineSettings:
             if math.isfinite(cutter.profile_radius):
                 rows.append(("Blade profile radius", f"{cutter.profile_radius:.3f}", "mm"))
         return rows
+
+
+def _check_table(table, problems) -> tuple:
+    """``blank_offset_table`` as ((nodes...), (values...)) of floats, or () (problems appended when invalid)."""
+    if table is None or len(table) == 0:
+        return ()
+    allowed = "((psi_1..psi_m), (dE_1..dE_m)[, (M_1..M_m)]), m >= 2 finite values, psi strictly increasing"
+    try:
+        parts = tuple(tuple(float(v) for v in part) for part in table)
+    except (TypeError, ValueError):
+        parts = ()
+    ok = len(parts) in (2, 3) and len(parts[0]) >= 2 and all(len(q) == len(parts[0]) for q in parts)
+    if not (ok and all(math.isfinite(v) for q in parts for v in q)
+            and all(b > a for a, b in zip(parts[0], parts[0][1:]))):
+        problems.append(Problem("settings.blank_offset_table", table, allowed, "rad, mm, mm/rad^2"))
+        return ()
+    return parts
 
 
 def _dms(rad: float) -> str:
