@@ -3,6 +3,8 @@ import os
 # small dense solves are far slower with threaded BLAS on 2 cores (LTCA); set before numpy is imported
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
+# the FE compliance cache of LTCA goes to a fresh directory per test session
+os.environ.setdefault("SPIRALBEVEL_CACHE", __import__("tempfile").mkdtemp(prefix="spiralbevel-cache-"))
 
 import matplotlib
 

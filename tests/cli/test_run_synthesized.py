@@ -53,3 +53,18 @@ def test_easeoff_is_clearance_and_measurement_grids(syn_run):
         if isinstance(name, str) and name.endswith(".csv"):
             lines = (out / name).read_text().strip().splitlines()
             assert len([ln for ln in lines if not ln.startswith("#")]) == 1 + 45
+
+
+def test_ltca_of_synthesized_pair(syn_run):
+    out, report = syn_run
+    lt = report["ltca"]
+    # seed 001 §4.3.2: at the torque of a 0.00635 mm approach the loaded TE grows well beyond the unloaded one
+    # (paper: -3.15" unloaded, -22.08" loaded)
+    assert lt["torque_Nm"] == pytest.approx(lt["torque_for_approach_Nm"])
+    assert lt["torque_for_approach_Nm"] > 1.0
+    assert lt["max_loaded_transmission_error_arcsec"] < 0
+    assert abs(lt["max_loaded_transmission_error_arcsec"]) > 3 * abs(lt["max_unloaded_transmission_error_arcsec"])
+    share = np.array(lt["load_share"])
+    assert np.allclose(share.sum(axis=1), 1.0, atol=1e-9)   # load sharing adds up at every position
+    assert lt["positions_with_two_pairs_loaded"] >= 1
+    assert (out / "ltca.png").stat().st_size > 0

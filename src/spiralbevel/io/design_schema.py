@@ -6,14 +6,15 @@ Angles are degrees or DMS strings (``"22°30'"``); lengths are mm. Each field ca
 
 from __future__ import annotations
 
-from typing import Annotated, Literal, Optional
+from typing import Annotated, Literal, Optional, Union
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
 from .angles import parse_angle_deg
 
 __all__ = ["Angle", "GearSetSpec", "DepthSpec", "FlankSpec", "ManufacturingSpec", "OutputSpec", "CutterSpec",
-           "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "SynthesisSpec", "DesignFile"]
+           "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "SynthesisSpec", "LTCASpec",
+           "DesignFile"]
 
 Angle = Annotated[float, BeforeValidator(parse_angle_deg)]
 
@@ -155,6 +156,25 @@ class SynthesisSpec(_Model):
     free: Literal["offset", "modified-roll", "fixed-blade"] = _f("offset", description="settings solved for")
 
 
+class LTCASpec(_Model):
+    """Loaded tooth contact analysis (seed 001 §4.3.2) of one side of a face-milled pair."""
+
+    side: Literal["drive", "coast"] = _f("drive", description="pair side analysed")
+    torque: Union[Literal["approach"], float] = _f(
+        "approach", unit="N m", description="gear torque, or 'approach': the torque of a 0.00635 mm approach")
+    positions: int = _f(21, ge=5, le=201, description="mesh positions over one cycle")
+    youngs_modulus: float = _f(206000.0, unit="N/mm^2", gt=1000.0, le=1e6, description="E of both members")
+    poisson_ratio: float = _f(0.3, unit="-", gt=0.0, lt=0.5, description="nu of both members")
+    flank_grid: tuple[int, int] = _f((15, 8), description="face x profile grid of the FE tooth model")
+    contact_grid: tuple[int, int] = _f((21, 7), description="potential contact points per pair: along x across")
+
+    @model_validator(mode="after")
+    def _torque(self):
+        if not isinstance(self.torque, str) and not self.torque > 0:
+            raise ValueError("torque must be > 0 N m or 'approach'")
+        return self
+
+
 class DesignFile(_Model):
     """A whole spiralbevel design file."""
 
@@ -163,5 +183,6 @@ class DesignFile(_Model):
     flank: FlankSpec = FlankSpec()
     face_milling: FaceMillingSpec = FaceMillingSpec()
     synthesis: Optional[SynthesisSpec] = None
+    ltca: Optional[LTCASpec] = None
     manufacturing: ManufacturingSpec = ManufacturingSpec()
     output: OutputSpec = OutputSpec()

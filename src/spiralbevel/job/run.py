@@ -84,4 +84,4 @@ def _logspiral_steps(spec) -> int:
 
 def _facemilled_steps(spec) -> int:
     o = spec.output
-    return 5 + int(o.plots) + int(o.stl) + int(o.step)
+    return 5 + int(spec.ltca is not None) + int(o.plots) + int(o.stl) + int(o.step)

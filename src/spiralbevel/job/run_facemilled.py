@@ -34,6 +34,17 @@ def run_facemilled(spec, blank, out, steps, report, summary):
 
         tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids)
         report["tca"]["misalignment_sensitivity"] = misalignment_sensitivity(blank, setups, "drive")
+    ltca_result = None
+    if spec.ltca is not None:
+        with steps.step("loaded TCA (FE compliance, load sharing)"):
+            from .ltca import run_ltca_job
+
+            ltca_result, report["ltca"] = run_ltca_job(spec, blank, setups)
+            lt = report["ltca"]
+            summary.highlights.append(
+                f"LTCA {lt['side']}: torque {lt['torque_Nm']:.2f} N m (approach 0.00635 mm at "
+                f"{lt['torque_for_approach_Nm']:.2f} N m), loaded TE {lt['max_loaded_transmission_error_arcsec']:.3f} "
+                f"arcsec, max pressure {lt['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
     with steps.step("ease-off and measurement grids"):
         from .inspection import easeoff_maps, measurement_files
 
@@ -43,6 +54,9 @@ def run_facemilled(spec, blank, out, steps, report, summary):
         summary.files += files
     if o.plots:
         with steps.step("plots"):
+            if ltca_result is not None:
+                fig = ltca_result.plot()
+                summary.files.append(outputs.save_figure(fig, out / "ltca.png"))
             for name, res in tca_results.items():
                 if res is not None:
                     fig = res.plot(outline1=tca_outlines[name][0], outline2=tca_outlines[name][1])
