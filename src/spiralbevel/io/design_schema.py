@@ -154,6 +154,12 @@ class SynthesisSpec(_Model):
     te_magnitude: float = _f(3.0, unit="arcsec", gt=0.0, le=600.0, description="parabolic TE over one mesh cycle")
     approach: float = _f(0.00635, unit="mm", gt=0.0, le=0.1, description="elastic approach of the ellipse")
     free: Literal["offset", "modified-roll", "fixed-blade"] = _f("offset", description="settings solved for")
+    motion_curve: Literal["parabolic", "cmc"] = _f(
+        "parabolic", description="'cmc': predesigned fourth-order combined motion curve by multi-point control "
+        "of the pinion blank offset (drive side)")
+    control_points: int = _f(11, ge=3, le=61, description="multi-point control: number of control points")
+    offset_interpolation: Literal["spline", "linear", "polynomial"] = _f(
+        "spline", description="blank-offset law between control points")
 
 
 class LTCASpec(_Model):

@@ -101,6 +101,20 @@ def synthesize_sides(spec, blank, setups):
     for name in sy.sides:
         s1, s2 = PAIR_SIDES[name]
         gear = setups[(Member.GEAR, s2)]
+        if sy.motion_curve == "cmc":
+            from ..meshing.synthesis.cmc_design import design_seed001_style
+
+            design = design_seed001_style(
+                gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
+                semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * math.pi / 648000.0,
+                n_control=sy.control_points, interpolation=sy.offset_interpolation, approach=sy.approach,
+                free=getattr(syn, _FREE[sy.free]))
+            mp = design.multipoint
+            new[(Member.PINION, s1)] = FlankSetup(
+                Member.PINION, s1, design.synthesis.pinion_cutter, mp.pinion_settings, mp.pinion_flank,
+                f"local synthesis + multi-point control ({name} side)")
+            results[name] = design
+            continue
         res = syn.synthesize_pinion(
             gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
             semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * math.pi / 648000.0,
@@ -109,6 +123,30 @@ def synthesize_sides(spec, blank, setups):
                                               res.pinion_flank, f"local synthesis ({name} side)")
         results[name] = res
     return new, results
+
+
+def cmc_paper_model(spec, blank, setups, name):
+    """TE summary of the CMC design in seed 001's own model: both cutters straight blades down to the tip (no edge
+    radius), TCA over the whole cycle (for comparison with the paper's -3.1527 arcsec)."""
+    from ..meshing import synthesis as syn
+    from ..meshing.synthesis.cmc_design import design_seed001_style, te_summary
+
+    sy = spec.synthesis
+    s1, s2 = PAIR_SIDES[name]
+    gear = setups[(Member.GEAR, s2)]
+    d = design_seed001_style(gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
+                             semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * math.pi / 648000.0,
+                             n_control=sy.control_points, interpolation=sy.offset_interpolation, approach=sy.approach,
+                             free=getattr(syn, _FREE[sy.free]), straight_blades=True)
+    if d.tca is None:
+        return {"control_point_errors_rad": d.multipoint.control_point_errors.tolist()}
+    ts = te_summary(d.tca, d.multipoint)
+    keep = ("max_transmission_error_arcsec", "predesigned_magnitude_arcsec", "controlled_range_deviation_arcsec",
+            "control_point_errors_rad", "transfer_points_deg", "pinion_rotation_deg", "transmission_error_arcsec")
+    out = {k: ts[k] for k in keep}
+    e = d.multipoint.offsets
+    out["blank_offset_range_mm"] = [float(min(e)), float(max(e))]
+    return out
 
 
 def _basic_setups(spec, blank):

@@ -15,6 +15,7 @@ def run_facemilled(spec, blank, out, steps, report, summary):
         setups, synth = fm.setup_flanks(spec, blank, with_synthesis=True)
         if synth:
             report["synthesis"] = {name: r.summary() for name, r in synth.items()}
+        cmc = {name: d for name, d in synth.items() if hasattr(d, "multipoint")}
     with steps.step("generated flanks and curvatures"):
         grids = {k: st.flank.grid(n_face, n_profile) for k, st in setups.items()}
         flanks, machines = fm.flank_report(setups)
@@ -34,6 +35,23 @@ def run_facemilled(spec, blank, out, steps, report, summary):
 
         tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids)
         report["tca"]["misalignment_sensitivity"] = misalignment_sensitivity(blank, setups, "drive")
+        if cmc:
+            from ..meshing.synthesis.cmc_design import te_summary
+
+            name, design = next(iter(cmc.items()))
+            if design.tca is not None:
+                # seed 001 §5: TE of the final pair against the predesigned CMC, from the multi-point TCA
+                ts = te_summary(design.tca, design.multipoint)
+                report["tca"].update(max_transmission_error_arcsec=ts["max_transmission_error_arcsec"],
+                                     control_point_errors_rad=ts["control_point_errors_rad"], cmc=ts)
+                summary.highlights.append(
+                    f"CMC ({name}): max TE {ts['max_transmission_error_arcsec']:.4f} arcsec against the predesigned "
+                    f"{ts['predesigned_magnitude_arcsec']:.4f}; control-point errors <= "
+                    f"{max(ts['control_point_errors_rad']):.2e} rad")
+            else:
+                report["tca"]["control_point_errors_rad"] = design.multipoint.control_point_errors.tolist()
+            # the paper's own model (straight blades continued to the tip, seed 001 Eq. (16)) for comparison
+            report["tca"]["cmc_paper_model"] = fm.cmc_paper_model(spec, blank, setups, name)
     ltca_result = None
     if spec.ltca is not None:
         with steps.step("loaded TCA (FE compliance, load sharing)"):

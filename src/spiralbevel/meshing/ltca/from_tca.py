@@ -110,7 +110,10 @@ def _pair_states(pinion, gear, kinematics, tca, misalignment):
         raise DesignError.single("kinematics", (prob.z1, prob.z2), f"the TCA's (z1, z2) = ({tca.z1}, {tca.z2})", "-",
                                  "loaded TCA")
     k = np.asarray(tca.pairs, int)
-    valid = (np.asarray(tca.status_pairs) != ContactStatus.NO_CONTACT) & np.isfinite(tca.te_pairs)
+    # pairs whose unloaded contact lies off a flank (EDGE: a point of the analytically extended surfaces) are not
+    # loaded: edge contact is not modelled, and the separations around such a point are not those of the teeth
+    status = np.asarray(tca.status_pairs)
+    valid = (status != ContactStatus.NO_CONTACT) & (status != ContactStatus.EDGE) & np.isfinite(tca.te_pairs)
     ii, jj = np.nonzero(valid)
     phi1 = tca.phi1[ii]
     phi2 = tca.phi2_pairs[ii, jj]
