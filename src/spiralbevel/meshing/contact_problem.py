@@ -14,6 +14,7 @@ import numbers
 import numpy as np
 
 from .._core import tca as _k
+from .._core import tca_batch as _b
 from ..errors import DesignError, Problem
 from .contact_surface import surface_derivatives
 from .misalignment import Misalignment
@@ -62,6 +63,7 @@ class ContactProblem:
             ref = getattr(pinion, "reference_params", None)
             scale = float(np.linalg.norm(pinion.evaluate(np.asarray(ref, float))[0])) if ref is not None else 100.0
         self.scale = float(scale)
+        self._const = _b.assembly_constants(self.axes, self.scale)
 
     # ------------------------------------------------------------------ angles of tooth pairs
     @property
@@ -118,6 +120,62 @@ class ContactProblem:
             return _k.minnorm_step(J, Fp)[0]
 
     # ------------------------------------------------------------------ batched solve
+    def newton(self, phi1_eff, x0, tol=1e-10, max_iter=30, basis=None, anchor=None, patience=None):
+        """Batched Newton on flat batches, keeping the Jacobian and the surface data of the final iterate.
+
+        Parameters
+        ----------
+        phi1_eff : (m,) float, rad
+        x0 : (m, 5) float
+        tol : float, mm
+            On max|F|.
+        basis : (m, 2, 3) float, optional
+            Rows e_1, e_2 of the normal equations; default: orthogonal to the gear's fixed-frame normal at x0.
+        anchor : (int, (m,) float), optional
+            See :meth:`solve`.
+        patience : int, optional
+            Iterations without halving the best residual after which a system is given up
+            (:func:`spiralbevel._core.tca_batch.newton_batched`); default: never (up to ``max_iter``).
+
+        Returns
+        -------
+        x (m, 5), converged (m,), residual (m,) mm, J (m, 5 or 6, 5), data, iterations int, basis (m, 2, 3)
+            ``data = (S1, S2, S1f, Q)``: stacked member-frame surface data of pinion and gear (m, 3, 6) (columns r, n,
+            r_q0, r_q1, n_q0, n_q1) and their fixed-frame images (:func:`~spiralbevel._core.tca_batch.system_stacked`).
+        """
+        phi1_eff = np.asarray(phi1_eff, float).reshape(-1)
+        x0 = np.asarray(x0, float).reshape(-1, 5)
+        c1, s1 = np.cos(phi1_eff)[:, None], np.sin(phi1_eff)[:, None]
+        E = None if basis is None else np.asarray(basis, float)
+        const = self._const
+
+        def fun(x, idx):
+            nonlocal E
+            S1 = _b.stack_state(*surface_derivatives(self.pinion, x[:, 0:2]))
+            S2 = _b.stack_state(*surface_derivatives(self.gear, x[:, 2:4]))
+            c2, s2 = np.cos(x[:, 4])[:, None], np.sin(x[:, 4])[:, None]
+            if E is None:  # first call, all systems: basis from the gear normal at the start
+                n2f = const[1][:3] @ _b.rotate_z(S2[:, :, 1:2], c2, s2)
+                E = _b.basis_matrix(n2f[:, :, 0])
+            F, J, S1f, Q = _b.system_stacked(S1, S2, c1[idx], s1[idx], c2, s2, const, E[idx])
+            if anchor is not None:
+                j, val = anchor
+                F = np.concatenate([F, self.scale * (x[:, j] - np.asarray(val, float)[idx])[:, None]], -1)
+                row = np.zeros((len(idx), 1, 5))
+                row[:, 0, j] = self.scale
+                J = np.concatenate([J, row], -2)
+            return F, J, (S1, S2, S1f, Q)
+
+        x, conv, res, J, data, it = _b.newton_batched(fun, x0, tol, max_iter=max_iter,
+                                                      patience=max_iter if patience is None else patience)
+        return x, conv, res, J, data, it, E
+
+    def path_tangent(self, J, S1f, basis):
+        """dx/dphi1 (m, 5) from the Jacobian and fixed-frame pinion data of :meth:`newton` (minimum norm on a
+        contact line)."""
+        with np.errstate(all="ignore"):
+            return _b.newton_step(J, _b.dF_dphi1_stacked(S1f, basis, self.scale))
+
     def solve(self, phi1_eff, x0, tol=1e-10, max_iter=30, basis=None, anchor=None):
         """Batched Newton (minimum-norm steps) on flat batches.
 
@@ -137,20 +195,15 @@ class ContactProblem:
         Returns
         -------
         x (m, 5), converged (m,), residual (m,) mm, sratio (m,), iterations int
+            ``sratio``: s_min / s_max of the column-equilibrated Jacobian at the final iterate (near 0 on a line).
         """
-        phi1_eff = np.asarray(phi1_eff, float).reshape(-1)
-        x0 = np.asarray(x0, float).reshape(-1, 5)
-        if basis is None:
-            basis = self.basis(x0, phi1_eff)
-
-        def fun_jac(x, idx):
-            F, J = self.system(x, phi1_eff[idx], (basis[0][idx], basis[1][idx]))
-            if anchor is None:
-                return F, J
-            j, val = anchor
-            Fa = np.concatenate([F, self.scale * (x[:, j] - np.asarray(val, float)[idx])[:, None]], -1)
-            row = np.zeros((len(idx), 1, 5))
-            row[:, 0, j] = self.scale
-            return Fa, np.concatenate([J, row], -2)
-
-        return _k.newton_minnorm(fun_jac, x0, tol, max_iter=max_iter)
+        E = None if basis is None else np.stack([np.asarray(basis[0], float), np.asarray(basis[1], float)], -2)
+        x, conv, res, J, _, it, _ = self.newton(phi1_eff, x0, tol, max_iter, E, anchor)
+        sratio = np.full(len(x), np.nan)
+        good = np.isfinite(J).all(axis=(-1, -2))
+        if good.any():
+            cn = np.linalg.norm(J[good], axis=-2)
+            cn = np.where(cn > 0, cn, 1.0)
+            s = np.linalg.svd(J[good] / cn[..., None, :], compute_uv=False)
+            sratio[good] = s[..., -1] / s[..., 0]
+        return x, conv, res, sratio, it

@@ -15,6 +15,12 @@ Algorithm (all numpy, batched):
    see :mod:`spiralbevel.meshing.contact_problem`);
 3. all positions x pairs at once, started from cubic Hermite interpolation of the continuation nodes;
 4. domains, TE, the pair in contact, transfer points, contact ellipses.
+
+Speed (bench/bench_tca.py): the Newton iterations use the fused kernels of :mod:`spiralbevel._core.tca_batch` (LU
+steps where the system is provably regular, the minimum-norm SVD step only on a contact line), the path tangents
+come from the Jacobians of the last Newton iterations, one continuation level (+-T/2) feeds a quintic predictor for
+the outer positions, positions beyond a node the continuation could not reach are not solved, and systems that stop
+converging are dropped after two iterations.
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ import numbers
 import numpy as np
 
 from .._core import tca as _k
+from .._core import tca_batch as _b
 from ..errors import DesignError, NoContactError, Problem
 from .contact_problem import ContactProblem
 from .contact_surface import surface_contains
@@ -56,6 +63,8 @@ def _validate(n_positions, pairs, approach, tol, phi1_mean):
 
 def _hermite(o, nodes, X, Xp):
     """Cubic Hermite interpolation (extrapolation beyond the ends) of X(o) from sorted nodes with slopes Xp."""
+    if len(nodes) == 1:
+        return X[0] + (o - nodes[0])[..., None] * Xp[0]
     i = np.clip(np.searchsorted(nodes, o) - 1, 0, len(nodes) - 2)
     h = nodes[i + 1] - nodes[i]
     t = ((o - nodes[i]) / h)[..., None]
@@ -65,6 +74,17 @@ def _hermite(o, nodes, X, Xp):
     h01 = -2 * t**3 + 3 * t**2
     h11 = t**3 - t**2
     return h00 * X[i] + h10 * h * Xp[i] + h01 * X[i + 1] + h11 * h * Xp[i + 1]
+
+
+def _predict(o, nodes, X, Xp):
+    """Predictor of the path at offsets ``o``: cubic Hermite between the nodes; beyond the outer nodes, the quintic
+    through the three nodes nearest that end (values and slopes) when there are three, else Hermite extrapolation."""
+    out = _hermite(o, nodes, X, Xp)
+    if len(nodes) >= 3:
+        for sel, k in ((o < nodes[0], slice(0, 3)), (o > nodes[-1], slice(-3, None))):
+            if np.any(sel):
+                out[sel] = _quintic(nodes[k], X[k], Xp[k], o[sel])
+    return out
 
 
 def _quintic(o_nodes, X, Xp, o):
@@ -80,17 +100,19 @@ def _quintic(o_nodes, X, Xp, o):
     return (tt[:, None] ** p) @ coef
 
 
-def _continuation(prob, x_mean, phi1_mean, o_lo, o_hi, step, tol):
-    """Nodes (sorted offsets, X, X') of the solution path from the mean point out to [o_lo, o_hi].
+def _continuation(prob, x_mean, xp0, phi1_mean, o_lo, o_hi, step, tol):
+    """Nodes (sorted offsets, X, X') of the solution path from the mean point out to [o_lo, o_hi], and the offsets
+    (lo, hi) of the first node that could not be reached on each side (-inf, inf when none failed).
 
     Level 1 solves the nodes +-step from the tangent predictor; each further level advances every side by up to two
-    steps at once, predicted by the quintic Hermite polynomial through that side's last three nodes.
+    steps at once, predicted by the quintic Hermite polynomial through that side's last three nodes. The path
+    tangent at a node comes from the Jacobian of its last Newton iteration.
     """
-    xp0 = prob.tangent(x_mean, phi1_mean, prob.basis(x_mean, phi1_mean))
     nodes = {0: (x_mean, xp0)}  # integer step index -> (x, x')
     need = {1: int(np.ceil(o_hi / step - 1e-9)), -1: int(np.ceil(-o_lo / step - 1e-9))}
     last = {1: 0, -1: 0}
     alive = {d: need[d] > 0 for d in (1, -1)}
+    fail = {1: np.inf, -1: -np.inf}
     while any(alive.values()):
         idx, guesses = [], []
         for d in (1, -1):
@@ -113,14 +135,15 @@ def _continuation(prob, x_mean, phi1_mean, o_lo, o_hi, step, tol):
             idx.extend(new)
         idx = np.array(idx)
         phi = phi1_mean + idx * step
-        x, conv, _, _, _ = prob.solve(phi, np.array(guesses), tol=tol)
-        tang = prob.tangent(x, phi, prob.basis(x, phi))
+        x, conv, _, J, data, _, E = prob.newton(phi, np.array(guesses), tol=tol, patience=4)
+        tang = prob.path_tangent(J, data[2], E)
         for d in (1, -1):
             if not alive[d]:
                 continue
             for m in np.nonzero(np.sign(idx) == d)[0][np.argsort(np.abs(idx[np.sign(idx) == d]))]:
                 if not conv[m] or not np.all(np.isfinite(tang[m])):
                     alive[d] = False
+                    fail[d] = float(idx[m] * step)
                     break
                 nodes[int(idx[m])] = (x[m], tang[m])
                 last[d] = int(idx[m])
@@ -128,7 +151,30 @@ def _continuation(prob, x_mean, phi1_mean, o_lo, o_hi, step, tol):
                 alive[d] = False
     keys = sorted(nodes)
     return (np.array(keys, float) * step, np.array([nodes[k][0] for k in keys]),
-            np.array([nodes[k][1] for k in keys]))
+            np.array([nodes[k][1] for k in keys]), (fail[-1], fail[1]))
+
+
+#: all positions x pairs start from interpolated path points, where Newton halves the residual at every iteration;
+#: a system that fails to do so twice in a row has no solution near its start (beyond the end of the path)
+_PATIENCE = 2
+
+
+def _solve_reachable(prob, phi_eff, guess, reach, tol):
+    """:meth:`ContactProblem.newton` on the systems ``reach``; the others keep the guess, NaN data, no convergence."""
+    if reach.all():
+        return prob.newton(phi_eff, guess, tol=tol, patience=_PATIENCE)
+    m = len(guess)
+    x, conv, res = guess.copy(), np.zeros(m, bool), np.full(m, np.inf)
+    J = np.full((m, 5, 5), np.nan)
+    data = (np.full((m, 3, 6), np.nan), np.full((m, 3, 6), np.nan), np.full((m, 3, 6), np.nan),
+            np.full((m, 6, 6), np.nan))
+    iters, E = 0, None
+    if reach.any():
+        xr, cr, rr, Jr, dr, iters, E = prob.newton(phi_eff[reach], guess[reach], tol=tol, patience=_PATIENCE)
+        x[reach], conv[reach], res[reach], J[reach] = xr, cr, rr, Jr
+        for a, b in zip(data, dr):
+            a[reach] = b
+    return x, conv, res, J, data, iters, E
 
 
 def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = None, phi1_mean: float = 0.0,
@@ -191,36 +237,44 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
             raise DesignError.single("start", None, "(q1, q2, phi2) or surfaces with reference_params", "-")
         start = np.concatenate([np.asarray(q1, float), np.asarray(q2, float), [-ratio * phi1_mean]])
     start = np.asarray(start, float).reshape(1, 5)
-    xm, conv, res, _, _ = prob.solve(np.array([phi1_mean]), start, tol=tol)
+    xm, conv, res, Jm, dm, _, Em = prob.newton(np.array([phi1_mean]), start, tol=tol)
     xm = xm[0]
-    st = prob.state(xm)
-    R1, R2, o1, _ = prob.pose(phi1_mean, xm[4])
-    n1f, n2f = R1 @ st[1], R2 @ st[5]
+    n1f, n2f, r1f = dm[2][0, :, 1], dm[3][0, :3, 1], dm[2][0, :, 0]
     if not conv[0] or n1f @ n2f > -0.5:
         raise NoContactError(f"no contact at the mean position phi1 = {phi1_mean:.6g} rad "
                              f"(residual {res[0]:.3e} mm, n1.n2 = {n1f @ n2f:.3f})")
     phi2_mean = float(xm[4])
-    r1f = o1 + R1 @ st[0]
-    drive = 1 if np.cross(prob.axes[0], r1f - o1) @ n1f > 0 else -1
+    drive = 1 if np.cross(prob.axes[0], r1f) @ n1f > 0 else -1
     # ---------------------------------------------------------------- 2. continuation nodes
     phi1 = phi1_mean + np.linspace(-T / 2, T / 2, n_positions)
     off = (phi1 - phi1_mean)[:, None] + pairs[None, :] * T  # effective offsets (n, P)
-    nodes, X, Xp = _continuation(prob, xm, phi1_mean, off.min(), off.max(), T / 2, max(tol, 1e-8))
+    xp0 = prob.path_tangent(Jm, dm[2], Em)[0]
+    half = T / 2
+    nodes, X, Xp, (o_fail_lo, o_fail_hi) = _continuation(prob, xm, xp0, phi1_mean, max(off.min(), -half),
+                                                         min(off.max(), half), half, max(tol, 1e-8))
     # ---------------------------------------------------------------- 3. all positions x pairs
-    guess = _hermite(off.reshape(-1), nodes, X, Xp)
+    # beyond a node the continuation could not reach, the path of contact has ended (the extended flanks end or
+    # the normals turn away): those offsets are not solved and are reported as no contact
+    guess = _predict(off.reshape(-1), nodes, X, Xp)
     phi_eff = phi1_mean + off.reshape(-1)
-    x, conv, res, sratio, iters = prob.solve(phi_eff, guess, tol=tol)
-    line = conv & (sratio < line_tol)
+    reach = (off.reshape(-1) >= o_fail_lo - 1e-12) & (off.reshape(-1) <= o_fail_hi + 1e-12)
+    x, conv, res, J, data, iters, _ = _solve_reachable(prob, phi_eff, guess, reach, tol)
+    line = conv & _b.is_singular(J, line_tol)
     if np.any(line) and line_anchor is not None:
         # contact line: pick the point of the line where pinion parameter `line_anchor` has its reference value
         ref = getattr(pinion, "reference_params", None)
         value = float(ref[line_anchor]) if ref is not None else float(xm[line_anchor])
         ix = np.nonzero(line)[0]
-        xl, cl, rl, _, _ = prob.solve(phi_eff[ix], x[ix], tol=tol, anchor=(line_anchor, np.full(ix.size, value)))
+        xl, cl, rl, _, dl, _, _ = prob.newton(phi_eff[ix], x[ix], tol=tol,
+                                              anchor=(line_anchor, np.full(ix.size, value)))
         x[ix], conv[ix], res[ix] = xl, cl, rl
+        for a, b in zip(data, dl):
+            a[ix] = b
     # ---------------------------------------------------------------- 4. evaluation
     n, P = off.shape
-    r1, n1, dr1, dn1, r2, n2, dr2, dn2 = prob.state(x)
+    S1, S2 = data[0], data[1]
+    r1, n1, dr1, dn1 = S1[:, :, 0], S1[:, :, 1], S1[:, :, 2:4], S1[:, :, 4:6]
+    r2, n2, dr2, dn2 = S2[:, :, 0], S2[:, :, 1], S2[:, :, 2:4], S2[:, :, 4:6]
     R1, R2, o1, o2 = prob.pose(phi_eff, x[:, 4])
     n1f = np.einsum("mij,mj->mi", R1, n1)
     n2f = np.einsum("mij,mj->mi", R2, n2)
@@ -253,10 +307,16 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     status = np.where(anyv, sp2[np.arange(n), np.maximum(sel, 0)], int(ContactStatus.NO_CONTACT))
     # ellipses at the selected contacts
     flat = np.arange(n) * P + np.maximum(sel, 0)
-    W1 = R1[flat] @ _k.weingarten(dr1[flat], dn1[flat]) @ np.swapaxes(R1[flat], -1, -2)
-    W2 = R2[flat] @ _k.weingarten(dr2[flat], dn2[flat]) @ np.swapaxes(R2[flat], -1, -2)
+    # positions without contact may carry no surface data (unsolved systems): a flat dummy keeps LAPACK off NaN
+    dummy = np.array([[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]])
+    nc = ~anyv[:, None, None]
+    dr1s, dn1s = np.where(nc, dummy, dr1[flat]), np.where(nc, 0.0, dn1[flat])
+    dr2s, dn2s = np.where(nc, dummy, dr2[flat]), np.where(nc, 0.0, dn2[flat])
+    R1s, R2s = np.where(nc, np.eye(3), R1[flat]), np.where(nc, np.eye(3), R2[flat])
+    W1 = R1s @ _k.weingarten(dr1s, dn1s) @ np.swapaxes(R1s, -1, -2)
+    W2 = R2s @ _k.weingarten(dr2s, dn2s) @ np.swapaxes(R2s, -1, -2)
     with np.errstate(all="ignore"):
-        lam, dirs = _k.relative_curvature(W1, W2, n1f[flat])
+        lam, dirs = _k.relative_curvature(W1, W2, np.where(nc[..., 0], (0.0, 0.0, 1.0), n1f[flat]))
         axes_ = _k.ellipse_axes(lam, approach)
     axes_ = np.where((status == ContactStatus.LINE)[:, None], np.inf, axes_)
     dirs1 = np.einsum("mji,mkj->mki", R1[flat], dirs)
