@@ -25,7 +25,20 @@ app = typer.Typer(
 console = Console()
 err_console = Console(stderr=True)
 
-DesignArg = typer.Argument(None, help="Design file (TOML). Default: the bundled aviation 23/65 example.")
+DesignArg = typer.Argument(None, help="Design file (TOML), or the name of a bundled example (see "
+                                       "'spiralbevel examples'). Default: the bundled aviation 23/65 log-spiral set.")
+
+
+def _load(design):
+    """A design file path, or the name of a bundled example."""
+    from .io.design_file import bundled_designs, load_design
+
+    if design is not None and not Path(design).exists():
+        names = bundled_designs()
+        stem = Path(design).name.removesuffix(".toml")
+        if stem in names:
+            return load_design(names[stem])
+    return load_design(design)
 
 
 def _guard(fn):
@@ -58,9 +71,7 @@ def run(
     quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar."),
 ):
     """Compute everything the design asks for and write report.json, plots, STL, STEP and tool paths."""
-    from .io.design_file import load_design
-
-    spec = load_design(design)
+    spec = _load(design)
     from .job import run_design
 
     summary = run_design(spec, out, progress=not quiet)
@@ -77,11 +88,10 @@ def blank(
     output: Optional[Path] = typer.Option(None, "--output", help="Write the JSON to this file instead of stdout."),
 ):
     """Print the ISO 23509 dimension sheet of pinion and gear."""
-    from .io.design_file import load_design
     from .io.dimension_sheet import dimension_sheet_json, dimension_sheet_rows
     from .job.blank import blank_from_design
 
-    spec = load_design(design)
+    spec = _load(design)
     result = blank_from_design(spec)
     if as_json or output is not None:
         text = json.dumps(dimension_sheet_json(result), indent=2)
@@ -107,11 +117,10 @@ def blank(
 @_guard
 def machine(design: Optional[Path] = DesignArg):
     """Print the machine summary sheet (cutter and cradle settings per member and side) of a face-milled design."""
-    from .io.design_file import load_design
     from .job.blank import blank_from_design
     from .job.facemilled import setup_flanks
 
-    spec = load_design(design)
+    spec = _load(design)
     if spec.flank.kind != "face-milled":
         raise DesignError.single("flank.kind", spec.flank.kind, "'face-milled' for a machine summary", "-")
     setups = setup_flanks(spec, blank_from_design(spec))
@@ -129,10 +138,23 @@ def machine(design: Optional[Path] = DesignArg):
 @_guard
 def check(design: Optional[Path] = DesignArg):
     """Validate a design file and report every problem."""
-    from .io.design_file import load_design
-
-    spec = load_design(design)
+    spec = _load(design)
     console.print(f"[green]ok[/] {spec.title}")
+
+
+@app.command()
+def examples():
+    """List the bundled example designs (run one with 'spiralbevel run NAME')."""
+    from .io.design_file import bundled_designs, parse_design
+
+    table = Table(title="Bundled example designs")
+    table.add_column("name")
+    table.add_column("flanks")
+    table.add_column("title")
+    for name, path in bundled_designs().items():
+        spec = parse_design(path.read_text(encoding="utf-8"), source=str(path))
+        table.add_row(name, spec.flank.kind, spec.title)
+    console.print(table)
 
 
 def _fmt(v) -> str:

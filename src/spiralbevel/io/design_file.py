@@ -15,7 +15,7 @@ from pydantic import BaseModel, ValidationError
 from ..errors import DesignError, Problem
 from .design_schema import DesignFile
 
-__all__ = ["load_design", "parse_design", "default_design_text", "DEFAULT_DESIGN_NAME"]
+__all__ = ["load_design", "parse_design", "default_design_text", "bundled_designs", "DEFAULT_DESIGN_NAME"]
 
 DEFAULT_DESIGN_NAME = "aviation_23x65_logspiral.toml"
 
@@ -23,6 +23,13 @@ DEFAULT_DESIGN_NAME = "aviation_23x65_logspiral.toml"
 def default_design_text(name: str = DEFAULT_DESIGN_NAME) -> str:
     """Text of a design bundled in ``spiralbevel/data``."""
     return resources.files("spiralbevel.data").joinpath(name).read_text(encoding="utf-8")
+
+
+def bundled_designs() -> dict:
+    """{name: path} of the example designs bundled in ``spiralbevel/data`` (name = file stem)."""
+    root = resources.files("spiralbevel.data")
+    return {Path(str(p)).stem: Path(str(p)) for p in sorted(root.iterdir(), key=lambda q: str(q))
+            if str(p).endswith(".toml")}
 
 
 def load_design(path: "str | Path | None" = None) -> DesignFile:
