@@ -136,6 +136,37 @@ def machine(design: Optional[Path] = DesignArg):
 
 @app.command()
 @_guard
+def correct(
+    design: Path = typer.Argument(..., help="Face-milled design file (or bundled example name) the part was cut to."),
+    measured: Path = typer.Option(..., "--measured", help="CSV of the 9 x 5 grid with a deviation_mm column "
+                                  "(positive = material added), as written by the main job and filled in by the CMM."),
+    member: str = typer.Option(..., "--member", help="pinion or gear"),
+    side: str = typer.Option(..., "--side", help="convex or concave"),
+    parameters: Optional[str] = typer.Option(None, "--parameters",
+                                             help="Comma-separated settings to correct (default: S_r, q, gamma_m, "
+                                                  "m_ic, 2C, 6D)."),
+    regularization: float = typer.Option(0.0, "--regularization", help="Tikhonov parameter (relative), >= 0."),
+):
+    """Corrective machine settings from measured flank deviations (least squares on the settings' sensitivities)."""
+    from .job.correction import correct_from_measurement, correction_rows
+
+    spec = _load(design)
+    params = [p.strip() for p in parameters.split(",")] if parameters else None
+    st, res = correct_from_measurement(spec, member, side, measured, params, regularization)
+    table = Table(title=f"Corrected settings, {member} {side}: rms {1000 * res.rms_before:.2f} -> "
+                        f"{1000 * res.rms_after:.2f} um (condition number {res.condition_number_used:.3g})")
+    for col in ("setting", "nominal", "corrected", "change", "unit"):
+        table.add_column(col, justify="left" if col in ("setting", "unit") else "right")
+    for name, a, b, d, unit in correction_rows(st, res):
+        table.add_row(name, f"{a:.6f}", f"{b:.6f}", f"{d:+.6f}", unit)
+    console.print(table)
+    if res.not_identifiable:
+        console.print(f"[yellow]not identifiable from this measurement (left unchanged):[/] "
+                      f"{', '.join(res.not_identifiable)}")
+
+
+@app.command()
+@_guard
 def check(design: Optional[Path] = DesignArg):
     """Validate a design file and report every problem."""
     spec = _load(design)

@@ -48,6 +48,33 @@ def curvature_maps(grids, out: Path, title: str) -> str:
     return save_figure(plot_flank_fields(panels, title=title), out / "curvature_maps.png")
 
 
+def curvature_domain_maps(pair, grids, out: Path) -> str:
+    """PNG of k1 and k2 of every log-spiral flank over its parameter domain (the parallelogram in (varphi, phi))."""
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, 4, figsize=(17, 7.5), squeeze=False)
+    for col, ((m, s), g) in enumerate(grids.items()):
+        f = pair.flank(m, s)
+        varphi = np.asarray(g.psi) / math.sin(f.surface.base_cone_angle) + _phi_of(f, g)
+        phi = _phi_of(f, g)
+        for row, (name, vals) in enumerate((("k1 (profile)", g.k1), ("k2 (lengthwise)", g.k2))):
+            ax = axes[row, col]
+            mesh = ax.pcolormesh(np.degrees(varphi), np.degrees(phi), vals, shading="gouraud", cmap="viridis")
+            ax.set_title(f"{m.value} {s.value}: {name}", fontsize=9)
+            ax.set_xlabel("rolling angle varphi [deg]")
+            ax.set_ylabel("spiral parameter phi [deg]")
+            fig.colorbar(mesh, ax=ax, label="1/mm (convex +)", shrink=0.85)
+    fig.suptitle("Principal curvatures over the parallelogram domains (seed 000 Eq. (16))")
+    fig.tight_layout()
+    return save_figure(fig, out / "curvature_domain.png")
+
+
+def _phi_of(flank, g):
+    """phi of grid points from rho = rho0 exp(phi sin(delta) cot(beta))."""
+    sf = flank.surface
+    return np.log(np.asarray(g.rho) / sf.rho0) / (math.sin(sf.base_cone_angle) / math.tan(sf.spiral_angle))
+
+
 def pitch_traces(grids, pitch_angles, out: Path) -> str:
     """PNG of the tooth traces on the developed pitch cones."""
     from ..viz.traces import pitch_cone_trace, plot_pitch_traces

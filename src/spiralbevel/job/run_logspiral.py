@@ -33,6 +33,7 @@ def run_logspiral(spec, blank, out, steps, report, summary):
     if o.plots:
         with steps.step("plots"):
             summary.files.append(outputs.curvature_maps(grids, out, spec.title))
+            summary.files.append(outputs.curvature_domain_maps(pair, grids, out))
             summary.files.append(outputs.pitch_traces(
                 grids, {Member.PINION: pair.pinion.pitch_angle, Member.GEAR: pair.gear.pitch_angle}, out))
             summary.files.append(outputs.meshing_pair_3d(pair, grids, out))
