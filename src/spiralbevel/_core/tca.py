@@ -26,7 +26,6 @@ __all__ = [
     "contact_system",
     "dF_dphi1",
     "minnorm_step",
-    "newton_minnorm",
     "weingarten",
     "relative_curvature",
     "ellipse_axes",
@@ -170,79 +169,6 @@ def minnorm_step(J, F, rcond=1e-10):
     y = np.einsum("...ji,...j->...i", U, -F) * inv
     dxs = np.einsum("...ji,...j->...i", Vt, y)
     return dxs / cn, s[..., -1] / s[..., 0]
-
-
-def newton_minnorm(fun_jac, x0, tol, max_iter=30, max_step=None, rcond=1e-10):
-    """Batched Newton with minimum-norm steps (see :func:`minnorm_step`) on a flat batch.
-
-    Parameters
-    ----------
-    fun_jac : callable
-        ``fun_jac(x (m, 5), idx (m,) int) -> (F (m, k), J (m, k, 5))`` (k >= 5) for the systems ``idx``.
-    x0 : (M, 5) float
-    tol : float
-        Converged when max|F| < tol (units of F).
-    max_step : (5,) float, optional
-        Cap on the absolute step per unknown (the step is scaled down as a whole).
-
-    Returns
-    -------
-    x : (M, 5) float
-    converged : (M,) bool
-    residual : (M,) float
-        max|F| at the final iterate (inf where the evaluation failed).
-    sratio : (M,) float
-        s_min / s_max of the column-equilibrated Jacobian at the final iterate (near 0 on a contact line).
-    iterations : int
-    """
-    x = np.array(x0, dtype=float, copy=True)
-    M = x.shape[0]
-    allidx = np.arange(M)
-    with np.errstate(all="ignore"):
-        F, J = fun_jac(x, allidx)
-    res = np.max(np.abs(F), axis=-1)
-    ok0 = np.isfinite(res) & np.all(np.isfinite(J), axis=(-1, -2))
-    res = np.where(ok0, res, np.inf)
-    it = 0
-    active = ok0 & (res >= tol)
-    blown = ~ok0
-    while it < max_iter and np.any(active):
-        it += 1
-        idx = allidx[active]
-        with np.errstate(all="ignore"):
-            dx, _ = minnorm_step(J[idx], F[idx], rcond)
-        if max_step is not None:
-            sc = np.max(np.abs(dx) / np.asarray(max_step, float), axis=-1, keepdims=True)
-            dx = dx / np.maximum(sc, 1.0)
-        x_old = x[idx].copy()
-        x[idx] += dx
-        with np.errstate(all="ignore"):
-            Fn, Jn = fun_jac(x[idx], idx)
-        # backtracking: a step that leaves the surfaces (non-finite residual) is halved, up to 8 times
-        for _ in range(8):
-            off = ~(np.all(np.isfinite(Fn), axis=-1) & np.all(np.isfinite(Jn), axis=(-1, -2)))
-            if not np.any(off):
-                break
-            dx[off] *= 0.5
-            x[idx[off]] = x_old[off] + dx[off]
-            with np.errstate(all="ignore"):
-                Fo, Jo = fun_jac(x[idx[off]], idx[off])
-            Fn[off], Jn[off] = Fo, Jo
-        F[idx], J[idx] = Fn, Jn
-        r = np.max(np.abs(Fn), axis=-1)
-        bad = ~(np.isfinite(r) & np.all(np.isfinite(Jn), axis=(-1, -2)))
-        r = np.where(bad, np.inf, r)
-        res[idx] = r
-        blown[idx] = bad
-        active[idx] = (r >= tol) & ~bad
-    sratio = np.full(M, np.nan)
-    good = ~blown
-    if np.any(good):
-        cn = np.linalg.norm(J[good], axis=-2)
-        cn = np.where(cn > 0, cn, 1.0)
-        s = np.linalg.svd(J[good] / cn[..., None, :], compute_uv=False)
-        sratio[good] = s[..., -1] / s[..., 0]
-    return x, res < tol, res, sratio, it
 
 
 def weingarten(dr, dn):
