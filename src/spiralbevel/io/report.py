@@ -1,7 +1,9 @@
 """``report.json``: every computed quantity with units, written atomically.
 
 Values are plain JSON: floats, lists, dicts. Each section may carry a ``"units"`` mapping from key to unit string.
-numpy scalars and arrays are converted; NaN and infinities are refused (a report never carries a silent NaN).
+numpy scalars and arrays are converted. JSON has no NaN: a value that does not exist (for example the TE of a tooth
+pair at a position where it has no contact) is written as ``null``; infinities (the contact ellipse of a line
+contact) likewise.
 """
 
 from __future__ import annotations
@@ -25,9 +27,7 @@ def to_jsonable(obj):
         return to_jsonable(obj.tolist())
     if isinstance(obj, (np.floating, float)):
         value = float(obj)
-        if not math.isfinite(value):
-            raise ValueError("report value is not finite")
-        return value
+        return value if math.isfinite(value) else None
     if isinstance(obj, (np.integer,)):
         return int(obj)
     if isinstance(obj, (np.bool_,)):
