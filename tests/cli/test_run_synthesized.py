@@ -68,3 +68,12 @@ def test_ltca_of_synthesized_pair(syn_run):
     assert np.allclose(share.sum(axis=1), 1.0, atol=1e-9)   # load sharing adds up at every position
     assert lt["positions_with_two_pairs_loaded"] >= 1
     assert (out / "ltca.png").stat().st_size > 0
+
+
+def test_both_sides_synthesized_give_localized_contact(syn_run):
+    _, report = syn_run
+    for side in ("drive", "coast"):
+        t = report["tca"][side]
+        assert t["max_transmission_error_arcsec"] == pytest.approx(0.0, abs=1e-6)
+        assert t["peak_to_peak_arcsec"] < 10.0          # a few arcsec, not the hundreds of unsynthesized settings
+    assert report["machine_settings"]["pinion"]["convex"]["source"].startswith("local synthesis")
