@@ -49,3 +49,86 @@ def test_phased_mean_points_meet_on_the_pitch_line(flanks):
     assert np.allclose(r1, r2f, atol=1e-6)          # both at the mean pitch point, A_m from the apex
     assert np.linalg.norm(r1) == pytest.approx(115.9511, abs=1e-3)
     assert abs(r1[1]) < 1e-9                         # on the pitch line in the xz-plane
+
+
+# ---------------------------------------------------------------------------------------------- analytic derivatives
+def _central(fun, q, h):
+    """Central differences (4th order) of fun(q) -> (r, n) w.r.t. both parameters, columns stacked on the last axis."""
+    cols_r, cols_n = [], []
+    for j in range(2):
+        e = np.zeros(2)
+        e[j] = h[j]
+        (r1, n1), (r2, n2) = fun(q + e), fun(q - e)
+        (r3, n3), (r4, n4) = fun(q + 2 * e), fun(q - 2 * e)
+        cols_r.append((8 * (r1 - r2) - (r3 - r4)) / (12 * h[j]))
+        cols_n.append((8 * (n1 - n2) - (n3 - n4)) / (12 * h[j]))
+    return np.stack(cols_r, -1), np.stack(cols_n, -1)
+
+
+def _rel(a, b):
+    return np.max(np.linalg.norm(a - b, axis=-2) / np.linalg.norm(b, axis=-2))
+
+
+@pytest.mark.parametrize("phase", [0.0, 0.7])
+def test_derivatives_match_central_differences(flanks, phase):
+    """Closed-form dr, dn (generation_jet) against 4th-order central differences of ``evaluate``, both hands."""
+    for fl in flanks:
+        s = GeneratedSurface(fl, rotation=phase)
+        rng = np.random.default_rng(1)
+        q = s.reference_params + rng.normal(size=(40, 2)) * [1.5, 0.05]
+        r, n, dr, dn = s.derivatives(q)
+        r0, n0 = s.evaluate(q)
+        assert np.allclose(r, r0, atol=1e-12, equal_nan=True) and np.allclose(n, n0, atol=1e-14, equal_nan=True)
+        on = np.isfinite(r0[:, 0])
+        assert on.sum() > 30
+        q, dr, dn = q[on], dr[on], dn[on]
+        dr_fd, dn_fd = _central(s.evaluate, q, (1e-4, 1e-6))
+        assert _rel(dr, dr_fd) < 1e-6 and _rel(dn, dn_fd) < 1e-6
+
+
+def test_derivatives_with_modified_roll_offset_law_and_arc_blade():
+    """The kernel with every psi_c-dependent term active (modified roll, offset polynomial and cubic table) and a
+    circular-arc blade with its fillet, against central differences of the generation kernels' point and normal."""
+    from spiralbevel._core import generation as _g
+    from spiralbevel._core.generation_jet import generated_jet
+
+    for s_blade in (1.0, -1.0):
+        cp = _g.cutter_params(s_blade, 0.35, 60.0, 1.2, profile_radius=400.0, profile_ref=3.0)
+        mp = dict(S=62.0, q=1.0, gamma=0.45, XD=0.3, XB=0.2, E=1.5, m=2.1, roll=(0.05, -0.2, 0.4, 0.1),
+                  E_poly=(0.3, -0.8), E_table=(np.array([-0.37, 0.13, 0.41]), np.array([0.0, 0.02, -0.01]),
+                                               np.array([0.0, 0.3, 0.0])))  # nodes off the psi grid (kinks)
+        Rc = 60.0
+
+        def rn(q):
+            sol = _g.solve_contact(q[..., 0], q[..., 1], cp, mp, _g.reference_angle(q[..., 1], mp, Rc))
+            r, n_h, _, _ = _g.machine_state(sol, cp, mp)
+            return _g.to_member(r, sol["psi"], mp), _g.to_member(-s_blade * n_h, sol["psi"], mp, point=False)
+
+        u = np.concatenate([np.linspace(cp["u_min"] + 0.1, cp["u_j"] - 0.05, 5), np.linspace(cp["u_j"] + 0.1, 6, 8)])
+        psi = np.linspace(-0.3, 0.3, 7)
+        q = np.stack(np.meshgrid(u, psi, indexing="ij"), -1).reshape(-1, 2)
+        S, disc = generated_jet(q[:, 0], q[:, 1], cp, mp, Rc)
+        ok = np.abs(disc) < 0.99
+        assert ok.sum() > 50
+        r0, n0 = rn(q)
+        assert np.allclose(S[ok, :, 0], r0[ok], atol=1e-11) and np.allclose(S[ok, :, 1], n0[ok], atol=1e-14)
+        dr_fd, dn_fd = _central(rn, q, (1e-4, 1e-6))
+        assert _rel(S[ok, :, 2:4], dr_fd[ok]) < 1e-6 and _rel(S[ok, :, 4:6], dn_fd[ok]) < 1e-6
+
+
+def test_derivatives_nan_off_surface_and_contains_agrees_with_evaluate(flanks):
+    _, g = flanks
+    s = GeneratedSurface(g)
+    r, n, dr, dn = s.derivatives(np.array([[50.0, 0.5], list(s.reference_params)]))
+    assert np.all(np.isnan(dr[0])) and np.all(np.isnan(dn[0])) and np.all(np.isfinite(dn[1]))
+    # contains (one closed-form contact and the axial section) against the outline test on evaluated points
+    rng = np.random.default_rng(2)
+    q = s.reference_params + rng.normal(size=(400, 2)) * [4.0, 0.3]
+    pts, _ = s.evaluate(q)
+    ol = g.outline
+    with np.errstate(invalid="ignore"):
+        R, h = ol.Rh(pts[:, 2], np.hypot(pts[:, 0], pts[:, 1]))
+        ref = np.isfinite(pts[:, 0]) & (R >= ol.Ri) & (R <= ol.Re) & (h <= ol.h_face(R)) & (
+            q[:, 0] >= g.generator.cp["u_j"])
+    got = s.contains(q)
+    assert 0 < got.sum() < len(q) and np.array_equal(got, ref)

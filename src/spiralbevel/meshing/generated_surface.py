@@ -11,6 +11,10 @@ import math
 
 import numpy as np
 
+from .._core.generation import axial_radial, contact_point
+from .._core.generation_jet import generated_jet
+from ..conventions import Hand
+
 __all__ = ["GeneratedSurface", "phased_for_pair"]
 
 
@@ -54,14 +58,46 @@ class GeneratedSurface:
             r, n = np.where(off[..., None], np.nan, r), np.where(off[..., None], np.nan, n)
         return r, n
 
+    @property
+    def _Rm(self):
+        """The phasing turn after the mirror image y -> -y of a right-hand member (``Generator._mirror``)."""
+        return self._R * np.array([1.0, -1.0, 1.0]) if self.flank.generator.hand is Hand.RIGHT else self._R
+
+    def derivatives(self, params):
+        """Points, outward normals and their derivatives w.r.t. (u, psi_c) in closed form
+        (:func:`spiralbevel._core.generation_jet.generated_jet`), NaN off the surface.
+
+        Returns
+        -------
+        r : (..., 3) float, mm
+        n : (..., 3) float
+        dr : (..., 3, 2) float
+            Columns dr/du (-) and dr/dpsi_c (mm/rad).
+        dn : (..., 3, 2) float
+            Columns dn/du (1/mm) and dn/dpsi_c (1/rad).
+        """
+        params = np.asarray(params, float)
+        gen = self.flank.generator
+        with np.errstate(invalid="ignore"):
+            S, disc = generated_jet(params[..., 0], params[..., 1], gen.cp, gen.mp, gen.cutter.nominal_radius)
+            S = self._Rm @ S
+        off = ~(np.abs(disc) <= 1.0)
+        if np.any(off):
+            S = np.where(off[..., None, None], np.nan, S)
+        return S[..., 0], S[..., 1], S[..., 2:4], S[..., 4:6]
+
     def contains(self, params):
         """True where (u, psi_c) lies on the flank: between toe and heel, above the fillet junction, below the top."""
-        fp, off = self._evaluate(params)
+        params = np.asarray(params, float)
+        gen = self.flank.generator
+        u, psi = np.broadcast_arrays(params[..., 0], params[..., 1])
+        sol = gen.contact(u, psi)
+        off = ~(np.abs(sol["disc"]) <= 1.0)
+        ax, rad = axial_radial(contact_point(sol, gen.mp), sol["psi"], gen.mp)
         ol = self.flank.outline
-        R, h = ol.Rh(fp.points[..., 2], np.hypot(fp.points[..., 0], fp.points[..., 1]))
-        u_j = self.flank.generator.cp["u_j"]
-        u = np.broadcast_to(np.asarray(params, float)[..., 0], off.shape)
-        return ~off & (R >= ol.Ri) & (R <= ol.Re) & (h <= ol.h_face(R)) & (u >= u_j)
+        with np.errstate(invalid="ignore"):
+            R, h = ol.Rh(ax, rad)
+            return ~off & (R >= ol.Ri) & (R <= ol.Re) & (h <= ol.h_face(R)) & (u >= gen.cp["u_j"])
 
 
 def phased_for_pair(pinion_flank, gear_flank):

@@ -20,7 +20,8 @@ Speed (bench/bench_tca.py): the Newton iterations use the fused kernels of :mod:
 steps where the system is provably regular, the minimum-norm SVD step only on a contact line), the path tangents
 come from the Jacobians of the last Newton iterations, one continuation level (+-T/2) feeds a quintic predictor for
 the outer positions, positions beyond a node the continuation could not reach are not solved, and systems that stop
-converging are dropped after two iterations.
+converging are dropped at the first iteration that does not halve their residual (continuation nodes after
+two); the generated flanks give analytic derivatives (:mod:`spiralbevel._core.generation_jet`).
 """
 
 from __future__ import annotations
@@ -135,7 +136,9 @@ def _continuation(prob, x_mean, xp0, phi1_mean, o_lo, o_hi, step, tol):
             idx.extend(new)
         idx = np.array(idx)
         phi = phi1_mean + idx * step
-        x, conv, _, J, data, _, E = prob.newton(phi, np.array(guesses), tol=tol, patience=4)
+        # a node within reach converges quadratically from its predictor; two iterations without halving the residual
+        # mean the path has ended there
+        x, conv, _, J, data, _, E = prob.newton(phi, np.array(guesses), tol=tol, patience=2)
         tang = prob.path_tangent(J, data[2], E)
         for d in (1, -1):
             if not alive[d]:
@@ -155,8 +158,8 @@ def _continuation(prob, x_mean, xp0, phi1_mean, o_lo, o_hi, step, tol):
 
 
 #: all positions x pairs start from interpolated path points, where Newton halves the residual at every iteration;
-#: a system that fails to do so twice in a row has no solution near its start (beyond the end of the path)
-_PATIENCE = 2
+#: a system that fails to do so has no solution near its start (beyond the end of the path)
+_PATIENCE = 1
 
 
 def _solve_reachable(prob, phi_eff, guess, reach, tol):
@@ -264,12 +267,17 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         # contact line: pick the point of the line where pinion parameter `line_anchor` has its reference value
         ref = getattr(pinion, "reference_params", None)
         value = float(ref[line_anchor]) if ref is not None else float(xm[line_anchor])
-        ix = np.nonzero(line)[0]
-        xl, cl, rl, _, dl, _, _ = prob.newton(phi_eff[ix], x[ix], tol=tol,
-                                              anchor=(line_anchor, np.full(ix.size, value)))
-        x[ix], conv[ix], res[ix] = xl, cl, rl
-        for a, b in zip(data, dl):
-            a[ix] = b
+        # systems already at the anchor leave that Newton at once, unchanged (residual max(|F|, |anchor|))
+        ra = prob.scale * np.abs(x[:, line_anchor] - value)
+        done = line & (ra < tol)
+        res[done] = np.maximum(res[done], ra[done])
+        ix = np.nonzero(line & ~done)[0]
+        if ix.size:
+            xl, cl, rl, _, dl, _, _ = prob.newton(phi_eff[ix], x[ix], tol=tol,
+                                                  anchor=(line_anchor, np.full(ix.size, value)))
+            x[ix], conv[ix], res[ix] = xl, cl, rl
+            for a, b in zip(data, dl):
+                a[ix] = b
     # ---------------------------------------------------------------- 4. evaluation
     n, P = off.shape
     S1, S2 = data[0], data[1]
