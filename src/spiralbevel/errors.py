@@ -57,7 +57,9 @@ class Problem:
         unit = f" {self.unit}" if self.unit and self.unit != "-" else ""
         text = f"{self.field} = {self.value!r}{unit}"
         if self.allowed:
-            text += f": allowed {self.allowed}{unit}"
+            # the unit follows a numeric range ("< 60 deg"), not a sentence
+            tail = unit if any(ch.isdigit() for ch in self.allowed) else ""
+            text += f": allowed {self.allowed}{tail}"
         if self.reason:
             text += f" ({self.reason})"
         return text

@@ -76,3 +76,13 @@ def test_machine_command_prints_summary():
 def test_machine_command_rejects_logspiral():
     result = runner.invoke(app, ["machine"])
     assert result.exit_code == 2 and "flank.kind" in result.output
+
+
+def test_bad_given_settings_named_by_design_file_path(tmp_path):
+    text = default_design_text(DESIGN).replace("radial_setting = 115.078", "radial_setting = 400.0")
+    f = tmp_path / "bad.toml"
+    f.write_text(text)
+    result = runner.invoke(app, ["run", str(f), "-o", str(tmp_path / "out"), "-q"])
+    assert result.exit_code == 2
+    assert "face_milling.gear_convex.machine.radial_setting = 400.0 mm" in result.output
+    assert "Traceback" not in result.output and not (tmp_path / "out").exists()

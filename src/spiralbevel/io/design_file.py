@@ -62,9 +62,18 @@ def _field_info(loc):
         if model is None or not isinstance(key, str) or key not in model.model_fields:
             return info if isinstance(key, int) else None
         info = model.model_fields[key]
-        ann = info.annotation
-        model = ann if isinstance(ann, type) and issubclass(ann, BaseModel) else None
+        model = _model_of(info.annotation)
     return info
+
+
+def _model_of(ann):
+    """The BaseModel class inside an annotation (plain, Optional[...] or Union[...]), or None."""
+    if isinstance(ann, type) and issubclass(ann, BaseModel):
+        return ann
+    for arg in getattr(ann, "__args__", ()) or ():
+        if isinstance(arg, type) and issubclass(arg, BaseModel):
+            return arg
+    return None
 
 
 def _allowed(info) -> str:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Annotated, Literal, Optional, Union
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
 from .angles import parse_angle_deg
 
@@ -174,11 +174,12 @@ class LTCASpec(_Model):
     flank_grid: tuple[int, int] = _f((15, 8), description="face x profile grid of the FE tooth model")
     contact_grid: tuple[int, int] = _f((21, 7), description="potential contact points per pair: along x across")
 
-    @model_validator(mode="after")
-    def _torque(self):
-        if not isinstance(self.torque, str) and not self.torque > 0:
-            raise ValueError("torque must be > 0 N m or 'approach'")
-        return self
+    @field_validator("torque")
+    @classmethod
+    def _torque(cls, v):
+        if not isinstance(v, str) and not (v > 0 and v < 1e7):
+            raise ValueError("allowed: 'approach' or 0 < torque < 1e7 N m")
+        return v
 
 
 class DesignFile(_Model):

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..conventions import Member, Side
-from ..errors import GeometryError
+from ..errors import DesignError, GeometryError
 
 MEMBERS = (Member.PINION, Member.GEAR)
 SIDES = (Side.CONVEX, Side.CONCAVE)
@@ -156,15 +156,39 @@ def _basic_setups(spec, blank):
     out = {}
     for m in MEMBERS:
         for s in SIDES:
-            fs = getattr(spec.face_milling, f"{m.value}_{s.value}")
-            cutter = _given_cutter(fs.cutter, s) if fs.cutter is not None else _default_cutter(spec, blank, m, s)
-            if fs.machine is not None:
-                settings, source = _given_settings(fs.machine), "given"
-            else:
-                settings = MachineSettings.from_blank(blank, m, s, cutter, roll=spec.face_milling.roll)
-                source = "from blank (crown-gear generation)"
-            out[(m, s)] = FlankSetup(m, s, cutter, settings, generate_flank(cutter, settings, blank, m, s), source)
+            key = f"{m.value}_{s.value}"
+            fs = getattr(spec.face_milling, key)
+            try:
+                cutter = _given_cutter(fs.cutter, s) if fs.cutter is not None else _default_cutter(spec, blank, m, s)
+                if fs.machine is not None:
+                    settings, source = _given_settings(fs.machine), "given"
+                else:
+                    settings = MachineSettings.from_blank(blank, m, s, cutter, roll=spec.face_milling.roll)
+                    source = "from blank (crown-gear generation)"
+                flank = generate_flank(cutter, settings, blank, m, s)
+                flank.mean_point()  # generation is lazy: check here that the settings generate this flank at all
+            except DesignError as err:
+                raise _in_design_file(err, key, fs) from err
+            out[(m, s)] = FlankSetup(m, s, cutter, settings, flank, source)
     return out
+
+
+def _in_design_file(err, key, fs):
+    """The same error with field names as design-file paths (face_milling.<member>_<side>.cutter/machine....); a
+    derived cutter or setting is named as such."""
+    from ..errors import Problem
+
+    def path(field):
+        head, _, rest = field.partition(".")
+        if head == "settings":
+            return f"face_milling.{key}.machine.{rest}" + ("" if fs.machine is not None else " (derived from the blank)")
+        if head == "cutter":
+            return f"face_milling.{key}.cutter.{rest}" + ("" if fs.cutter is not None else " (derived cutter)")
+        if field in ("point_radius", "blade_angle", "point_width", "edge_radius", "profile_radius"):
+            return f"face_milling.{key}.cutter.{field}" + ("" if fs.cutter is not None else " (derived cutter)")
+        return f"face_milling.{key}: {field}" if field else f"face_milling.{key}"
+
+    return type(err)([Problem(path(p.field), p.value, p.allowed, p.unit, p.reason) for p in err.problems])
 
 
 def _azimuth(p):
