@@ -27,8 +27,8 @@ def fm_run(tmp_path_factory):
 
 def test_files(fm_run):
     out, report = fm_run
-    assert {"report.json", "axial_section.png", "curvature_maps.png", "pinion_tooth.stl", "gear.stl"} <= set(
-        report["files"])
+    assert {"report.json", "axial_section.png", "curvature_maps.png", "pinion_tooth.stl", "gear.stl",
+            "pinion_tooth.step", "gear_tooth.step"} <= set(report["files"])
 
 
 def test_seed001_gear_mean_point(fm_run):
