@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import functools
 import json
+import warnings
 import sys
 from pathlib import Path
 from typing import Optional
@@ -15,7 +16,8 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from .errors import ConvergenceError, DesignError, MissingDependencyError, NoContactError, SpiralBevelError
+from .errors import (ConvergenceError, DesignError, MissingDependencyError, NoContactError, SpiralBevelError,
+                     SpiralBevelWarning)
 
 app = typer.Typer(
     add_completion=False,
@@ -33,7 +35,7 @@ def _load(design):
     """A design file path, or the name of a bundled example."""
     from .io.design_file import bundled_designs, load_design
 
-    if design is not None and not Path(design).exists():
+    if design is not None and not Path(design).is_file():
         names = bundled_designs()
         stem = Path(design).name.removesuffix(".toml")
         if stem in names:
@@ -42,23 +44,41 @@ def _load(design):
 
 
 def _guard(fn):
-    """Turn spiralbevel errors into a clean message and exit code 2 (input) or 1 (computation)."""
+    """Turn spiralbevel errors into a clean message and exit code 2 (input) or 1 (computation); print each design
+    warning once, after the command."""
+
+    def error(text):
+        err_console.print("[bold red]error:[/] ", end="")
+        err_console.print(text, markup=False, highlight=False)
 
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
-        try:
-            return fn(*args, **kwargs)
-        except DesignError as err:
-            err_console.print(f"[bold red]error:[/] {len(err.problems)} problem(s) in the input")
-            for p in err.problems:
-                err_console.print(f"  - {p}", markup=False, highlight=False)
-            raise typer.Exit(code=2) from None
-        except MissingDependencyError as err:
-            err_console.print(f"[bold red]error:[/] {err}", markup=False)
-            raise typer.Exit(code=2) from None
-        except (ConvergenceError, NoContactError, SpiralBevelError) as err:
-            err_console.print(f"[bold red]error:[/] {err}", markup=False)
-            raise typer.Exit(code=1) from None
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", SpiralBevelWarning)
+            try:
+                return fn(*args, **kwargs)
+            except DesignError as err:
+                error(f"{len(err.problems)} problem(s) in the input")
+                for p in err.problems:
+                    err_console.print(f"  - {p}", markup=False, highlight=False)
+                raise typer.Exit(code=2) from None
+            except MissingDependencyError as err:
+                error(str(err))
+                raise typer.Exit(code=2) from None
+            except (ConvergenceError, NoContactError, SpiralBevelError) as err:
+                error(str(err))
+                raise typer.Exit(code=1) from None
+            except OSError as err:
+                error(f"{err.strerror or err}: {err.filename}" if getattr(err, "filename", None) else str(err))
+                raise typer.Exit(code=2) from None
+            finally:
+                seen = set()
+                for w in caught:
+                    text = str(w.message)
+                    if issubclass(w.category, SpiralBevelWarning) and text not in seen:
+                        seen.add(text)
+                        err_console.print("[yellow]warning:[/] ", end="")
+                        err_console.print(text, markup=False, highlight=False)
 
     return wrapper
 
@@ -109,8 +129,6 @@ def blank(
     for sym, desc, unit, v1, v2 in dimension_sheet_rows(result):
         table.add_row(sym, desc, unit, _fmt(v1), _fmt(v2))
     console.print(table)
-    for w in getattr(result, "warnings", ()):
-        console.print(f"[yellow]warning:[/] {w}", markup=True)
 
 
 @app.command()
@@ -143,8 +161,12 @@ def correct(
     member: str = typer.Option(..., "--member", help="pinion or gear"),
     side: str = typer.Option(..., "--side", help="convex or concave"),
     parameters: Optional[str] = typer.Option(None, "--parameters",
-                                             help="Comma-separated settings to correct (default: S_r, q, gamma_m, "
-                                                  "m_ic, 2C, 6D)."),
+                                             help="Comma-separated settings to correct, from: radial_setting, "
+                                                  "cradle_angle, machine_root_angle, sliding_base, "
+                                                  "machine_centre_to_back, blank_offset, ratio_of_roll, "
+                                                  "modified_roll_2C, modified_roll_6D, blade_angle, point_radius "
+                                                  "(default: radial_setting, cradle_angle, machine_root_angle, "
+                                                  "ratio_of_roll, modified_roll_2C, modified_roll_6D)."),
     regularization: float = typer.Option(0.0, "--regularization", help="Tikhonov parameter (relative), >= 0."),
 ):
     """Corrective machine settings from measured flank deviations (least squares on the settings' sensitivities)."""

@@ -51,7 +51,13 @@ def parse_design(text: str, source: str = "<string>") -> DesignFile:
     try:
         return DesignFile.model_validate(data)
     except ValidationError as err:
-        raise DesignError([_problem(e) for e in err.errors()]) from err
+        problems, seen = [], set()
+        for e in err.errors():
+            p = _problem(e)
+            if p.field not in seen:          # a union (e.g. 'approach' or a number) reports once per member
+                seen.add(p.field)
+                problems.append(p)
+        raise DesignError(problems) from err
 
 
 def _field_info(loc):
@@ -87,7 +93,9 @@ def _allowed(info) -> str:
 
 
 def _problem(e) -> Problem:
-    loc = tuple(k for k in e["loc"] if not (isinstance(k, str) and k.startswith("function-")))
+    # drop pydantic's validator and union-member tags from the location (function-..., literal[...], float, int)
+    loc = tuple(k for k in e["loc"] if not (isinstance(k, str) and (k.startswith("function-") or "[" in k
+                                                                     or k in ("float", "int", "str", "bool"))))
     field = ".".join(str(k) for k in loc) or "design"
     info = _field_info(loc)
     unit = ""
@@ -103,4 +111,16 @@ def _problem(e) -> Problem:
         return Problem(field, "<missing>", allowed, unit, "required")
     msg = e.get("msg", "")
     msg = msg.removeprefix("Value error, ")
-    return Problem(field, e.get("input"), allowed, unit, msg)
+    value = e.get("input")
+    if isinstance(value, dict):                # a rule across fields of a section: the message names them
+        value = "(section)"
+    if kind in ("literal_error", "float_parsing", "float_type") and len(e["loc"]) > len(loc):
+        msg = "expected one of the allowed forms"
+        allowed = allowed or _union_allowed(loc)
+    return Problem(field, value, allowed, unit, msg)
+
+
+def _union_allowed(loc) -> str:
+    """Allowed forms of a union-typed field, from its description."""
+    info = _field_info(loc)
+    return (info.description or "") if info is not None else ""

@@ -17,6 +17,7 @@ __all__ = ["Angle", "GearSetSpec", "DepthSpec", "FlankSpec", "ManufacturingSpec"
            "DesignFile"]
 
 Angle = Annotated[float, BeforeValidator(parse_angle_deg)]
+GridCount = Annotated[int, Field(ge=3, le=401)]
 
 
 def _f(default=..., unit: str = "-", **kw):
@@ -91,7 +92,7 @@ class ManufacturingSpec(_Model):
 class OutputSpec(_Model):
     """What to compute and export."""
 
-    grid: tuple[int, int] = _f((31, 15), description="face x profile grid per flank")
+    grid: tuple[GridCount, GridCount] = _f((31, 15), description="face x profile grid per flank, 3..401 each")
     plots: bool = True
     stl: bool = True
     step: bool = False
@@ -167,12 +168,13 @@ class LTCASpec(_Model):
 
     side: Literal["drive", "coast"] = _f("drive", description="pair side analysed")
     torque: Union[Literal["approach"], float] = _f(
-        "approach", unit="N m", description="gear torque, or 'approach': the torque of a 0.00635 mm approach")
+        "approach", unit="N m", description="'approach' (the torque of a 0.00635 mm approach) or a gear torque 0 < T < 1e7")
     positions: int = _f(21, ge=5, le=201, description="mesh positions over one cycle")
     youngs_modulus: float = _f(206000.0, unit="N/mm^2", gt=1000.0, le=1e6, description="E of both members")
     poisson_ratio: float = _f(0.3, unit="-", gt=0.0, lt=0.5, description="nu of both members")
-    flank_grid: tuple[int, int] = _f((15, 8), description="face x profile grid of the FE tooth model")
-    contact_grid: tuple[int, int] = _f((21, 7), description="potential contact points per pair: along x across")
+    flank_grid: tuple[GridCount, GridCount] = _f((15, 8), description="face x profile grid of the FE tooth model")
+    contact_grid: tuple[GridCount, GridCount] = _f((21, 7),
+                                                   description="potential contact points per pair: along x across")
 
     @field_validator("torque")
     @classmethod
