@@ -249,8 +249,11 @@ def sweep(
 @app.command()
 @_guard
 def check(design: Optional[Path] = DesignArg):
-    """Validate a design file and report every problem."""
+    """Validate a design file: its schema, the ISO blank, and the flanks it defines (without the analyses)."""
+    from .job.check import check_design
+
     spec = _load(design)
+    check_design(spec)
     console.print(f"[green]ok[/] {spec.title}")
 
 

@@ -88,6 +88,13 @@ class ManufacturingSpec(_Model):
     ball_radius: float = _f(2.0, unit="mm", gt=0.0, le=50.0, description="ball-end tool radius")
     scallop_height: float = _f(0.005, unit="mm", gt=0.0, le=1.0, description="allowed scallop height")
 
+    @field_validator("die_direction")
+    @classmethod
+    def _nonzero(cls, v):
+        if not sum(c * c for c in v) > 0:
+            raise ValueError("allowed: a non-zero direction vector (member frame)")
+        return v
+
 
 class OutputSpec(_Model):
     """What to compute and export."""

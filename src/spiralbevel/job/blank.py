@@ -71,5 +71,21 @@ def blank_from_design(spec: DesignFile):
 
 
 def _renamed(err: DesignError) -> DesignError:
-    problems = [Problem(FIELD_PATHS.get(p.field, p.field), p.value, p.allowed, p.unit, p.reason) for p in err.problems]
+    problems = [Problem(_path(p.field), p.value, p.allowed, p.unit,
+                        "" if p.reason.startswith("given in radians") else p.reason) for p in err.problems]
     return type(err)(problems)
+
+
+def _path(field: str) -> str:
+    """Design-file path of a blank input, or the ISO symbol of a computed quantity with its meaning."""
+    if field in FIELD_PATHS:
+        return FIELD_PATHS[field]
+    try:
+        from ..design.blank_meta import QUANTITIES
+    except ImportError:  # pragma: no cover
+        return field
+    base = field.rstrip("12")
+    for sym, desc, *_ in QUANTITIES:
+        if sym == base:
+            return f"{field} (computed {desc}, from gear_set)"
+    return field

@@ -96,6 +96,23 @@ def synthesize_sides(spec, blank, setups):
     """
     from ..meshing import synthesis as syn
 
+    from ..errors import DesignError
+    from .problems import restated
+
+    try:
+        return _synthesize_sides(spec, blank, setups, syn)
+    except DesignError as err:
+        raise restated(err, SYNTHESIS_PATHS, default="synthesis") from err
+
+
+SYNTHESIS_PATHS = {
+    "eta": "synthesis.path_direction", "semi_major_axis": "synthesis.semi_major_axis",
+    "te_magnitude": "synthesis.te_magnitude", "m21_prime": "synthesis.te_magnitude", "approach": "synthesis.approach",
+    "eta/semi_major_axis": "synthesis.path_direction / semi_major_axis / te_magnitude (together)",
+}
+
+
+def _synthesize_sides(spec, blank, setups, syn):
     sy = spec.synthesis
     new, results = {}, {}
     for name in sy.sides:
@@ -186,6 +203,8 @@ def _in_design_file(err, key, fs):
             return f"face_milling.{key}.cutter.{rest}" + ("" if fs.cutter is not None else " (derived cutter)")
         if field in ("point_radius", "blade_angle", "point_width", "edge_radius", "profile_radius"):
             return f"face_milling.{key}.cutter.{field}" + ("" if fs.cutter is not None else " (derived cutter)")
+        if field.startswith("locate"):
+            return f"face_milling.{key} (cutter and machine settings)"
         return f"face_milling.{key}: {field}" if field else f"face_milling.{key}"
 
     return type(err)([Problem(path(p.field), p.value, p.allowed, p.unit, p.reason) for p in err.problems])

@@ -23,12 +23,27 @@ def boundaries_from_blank(blank):
 
 def design_pair(spec, blank):
     """The :class:`~spiralbevel.design.logspiral_pair.LogSpiralPair` of a design file and its blank."""
+    from ..errors import DesignError
+    from .problems import restated
+
     g = spec.gear_set
-    return design_logspiral_pair(
-        g.pinion_teeth, g.gear_teeth, math.radians(g.shaft_angle), math.radians(g.normal_pressure_angle),
-        math.radians(g.mean_spiral_angle), Hand(g.pinion_hand), boundaries_from_blank(blank),
-        thickness=getattr(blank, "smn1", None),
-    )
+    try:
+        return design_logspiral_pair(
+            g.pinion_teeth, g.gear_teeth, math.radians(g.shaft_angle), math.radians(g.normal_pressure_angle),
+            math.radians(g.mean_spiral_angle), Hand(g.pinion_hand), boundaries_from_blank(blank),
+            thickness=getattr(blank, "smn1", None),
+        )
+    except DesignError as err:
+        raise restated(err, LOGSPIRAL_PATHS, default="log-spiral pair") from err
+
+
+#: library parameter -> design-file field (root and face cones come from the ISO blank's depths and taper)
+LOGSPIRAL_PATHS = {
+    "z1": "gear_set.pinion_teeth", "z2": "gear_set.gear_teeth", "shaft_angle": "gear_set.shaft_angle",
+    "normal_pressure_angle": "gear_set.normal_pressure_angle", "spiral_angle": "gear_set.mean_spiral_angle",
+    "pinion_hand": "gear_set.pinion_hand", "thickness": "gear_set.depth.thickness_factor (pinion thickness)",
+    "boundaries[pinion].": "gear_set.depth -> pinion blank", "boundaries[gear].": "gear_set.depth -> gear blank",
+}
 
 
 def flank_grids(pair, n_face: int, n_profile: int):
