@@ -9,6 +9,7 @@ import numpy as np
 
 from ..conventions import Member, Side
 from ..errors import DesignError, GeometryError
+from ..meshing.tca_result import ARCSEC
 
 MEMBERS = (Member.PINION, Member.GEAR)
 SIDES = (Side.CONVEX, Side.CONCAVE)
@@ -123,7 +124,7 @@ def _synthesize_sides(spec, blank, setups, syn):
 
             design = design_seed001_style(
                 gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
-                semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * math.pi / 648000.0,
+                semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
                 n_control=sy.control_points, interpolation=sy.offset_interpolation, approach=sy.approach,
                 free=getattr(syn, _FREE[sy.free]))
             mp = design.multipoint
@@ -134,7 +135,7 @@ def _synthesize_sides(spec, blank, setups, syn):
             continue
         res = syn.synthesize_pinion(
             gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
-            semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * math.pi / 648000.0,
+            semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
             approach=sy.approach, free=getattr(syn, _FREE[sy.free]))
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
                                               res.pinion_flank, f"local synthesis ({name} side)")
@@ -152,7 +153,7 @@ def cmc_paper_model(spec, blank, setups, name):
     s1, s2 = PAIR_SIDES[name]
     gear = setups[(Member.GEAR, s2)]
     d = design_seed001_style(gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
-                             semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * math.pi / 648000.0,
+                             semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
                              n_control=sy.control_points, interpolation=sy.offset_interpolation, approach=sy.approach,
                              free=getattr(syn, _FREE[sy.free]), straight_blades=True)
     if d.tca is None:

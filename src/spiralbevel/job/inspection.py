@@ -28,7 +28,8 @@ def easeoff_maps(blank, setups, out, plots: bool):
         if plots:
             from .outputs import save_figure
 
-            fig = eo.plot(kind="surface")
+            fig = eo.plot(kind="surface", title=f"Ease-off of the pinion {s1.value} flank against the conjugate of "
+                                                f"the gear {s2.value} flank ({name} side); + = clearance")
             files.append(save_figure(fig, out / f"easeoff_{name}.png"))
     return section, files
 

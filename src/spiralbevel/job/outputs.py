@@ -30,21 +30,23 @@ def draft_maps(results, out: Path) -> str:
     fig, axes = plt.subplots((n + 1) // cols, cols, figsize=(11, 4.2 * ((n + 1) // cols)), squeeze=False)
     for ax, (label, r) in zip(axes.flat, results):
         plot_draft(r, ax=ax)
-        ax.set_title(f"{label}: failing area {100 * r.failing_area_fraction:.1f} %", fontsize=9)
+        d = np.round(r.die_direction, 3)
+        ax.set_title(f"{label}: n_out . v_d > 0 (no draft) on {100 * r.failing_area_fraction:.1f} % of the area, "
+                     f"v_d = {tuple(float(c) for c in d)}", fontsize=8)
     for ax in list(axes.flat)[n:]:
         ax.set_visible(False)
     fig.tight_layout()
     return save_figure(fig, out / "draft_map.png")
 
 
-def curvature_maps(grids, out: Path, title: str) -> str:
-    """PNG of k1 and k2 over every flank, drawn on the projected tooth."""
+def curvature_maps(grids, out: Path, title: str, labels=("k1 (profile)", "k2 (lengthwise)")) -> str:
+    """PNG of k1 and k2 over every flank, drawn on the projected tooth (convex = positive)."""
     from ..viz.flank_maps import plot_flank_fields
 
     panels = []
     for (m, s), g in grids.items():
-        panels.append((f"{m.value} {s.value}: k1 (profile)", g.point, g.k1, "1/mm"))
-        panels.append((f"{m.value} {s.value}: k2 (lengthwise)", g.point, g.k2, "1/mm"))
+        panels.append((f"{m.value} {s.value}: {labels[0]}", g.point, g.k1, "1/mm"))
+        panels.append((f"{m.value} {s.value}: {labels[1]}", g.point, g.k2, "1/mm"))
     return save_figure(plot_flank_fields(panels, title=title), out / "curvature_maps.png")
 
 
@@ -70,9 +72,8 @@ def curvature_domain_maps(pair, grids, out: Path) -> str:
 
 
 def _phi_of(flank, g):
-    """phi of grid points from rho = rho0 exp(phi sin(delta) cot(beta))."""
-    sf = flank.surface
-    return np.log(np.asarray(g.rho) / sf.rho0) / (math.sin(sf.base_cone_angle) / math.tan(sf.spiral_angle))
+    """phi of grid points (LogSpiralFlank.phi_of_rho)."""
+    return flank.surface.phi_of_rho(np.asarray(g.rho))
 
 
 def pitch_traces(grids, pitch_angles, out: Path) -> str:

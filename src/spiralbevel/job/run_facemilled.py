@@ -44,7 +44,8 @@ def run_facemilled(spec, blank, out, steps, report, summary):
             paper = fm.cmc_paper_model(spec, blank, setups, name)
             real = te_summary(design.tca, design.multipoint) if design.tca is not None else None
             report["tca"]["cmc"] = {"side": name, "paper_model": paper, "real_flanks": real}
-            report["tca"]["control_point_errors_rad"] = design.multipoint.control_point_errors.tolist()
+            # both top-level figures from the paper's model, the one seed 001 reports (the real-flank design beside)
+            report["tca"]["control_point_errors_rad"] = paper["control_point_errors_rad"]
             if "max_transmission_error_arcsec" in paper:
                 report["tca"]["max_transmission_error_arcsec"] = paper["max_transmission_error_arcsec"]
                 summary.highlights.append(
@@ -74,15 +75,19 @@ def run_facemilled(spec, blank, out, steps, report, summary):
         with steps.step("plots"):
             if ltca_result is not None:
                 fig = ltca_result.plot()
+                fig.suptitle(f"Loaded TCA, {spec.ltca.side} side: {spec.title}")
+                fig.tight_layout(rect=(0, 0, 1, 0.93))
                 summary.files.append(outputs.save_figure(fig, out / "ltca.png"))
             for name, res in tca_results.items():
                 if res is not None:
                     fig = res.plot(outline1=tca_outlines[name][0], outline2=tca_outlines[name][1])
                     fig.suptitle(f"TCA, {name} side: {spec.title}")
+                    fig.tight_layout(rect=(0, 0, 1, 0.93))
                     summary.files.append(outputs.save_figure(fig, out / f"tca_{name}.png"))
             summary.files.append(outputs.axial_section(grids, out, spec.title, tooth, blank))
             summary.files.append(outputs.curvature_maps(
-                {k: _Geo(g.points, g.k1, g.k2) for k, g in grids.items()}, out, spec.title))
+                {k: _Geo(g.points, g.k1, g.k2) for k, g in grids.items()}, out, spec.title,
+                labels=("k1 (principal, nearer the profile)", "k2 (principal, nearer the face)")))
     if o.stl:
         with steps.step("STL"):
             summary.files += outputs.stl_files(tooth, {Member.PINION: blank.z1, Member.GEAR: blank.z2}, out)

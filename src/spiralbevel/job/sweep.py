@@ -36,7 +36,7 @@ def _pair(spec_json: str, side: str):
     return c1, c2, BevelPairKinematics(blank.Sigma, blank.z1, blank.z2), setups[(Member.GEAR, s2)].flank.outline
 
 
-def sweep_point(spec_json: str, side: str, values: tuple, n_positions: int = 21) -> dict:
+def sweep_point(spec_json: str, side: str, values: tuple, n_positions: int = 41) -> dict:
     """TCA at one misalignment (values in design units: mm, mm, mm, deg). A plain function: a dask task."""
     from ..meshing.misalignment import Misalignment
     from ..meshing.tca import solve_tca
@@ -62,7 +62,7 @@ def sweep_point(spec_json: str, side: str, values: tuple, n_positions: int = 21)
 
 
 def misalignment_sweep(spec, grid: dict, side: str = "drive", scheduler: str | None = None,
-                       n_positions: int = 21) -> list:
+                       n_positions: int = 41) -> list:
     """TCA over the Cartesian product of misalignment values.
 
     Parameters

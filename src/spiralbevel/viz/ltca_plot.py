@@ -39,9 +39,13 @@ def plot_ltca(result, member: str = "gear", fig=None):
     ax1.set_xlabel("pinion rotation (deg)")
     ax1.set_ylabel("transmission error (arcsec)")
     ax1.legend(fontsize=7)
+    ax1.set_title("transmission error, unloaded and loaded", fontsize=9)
     for j in range(result.load_share.shape[1]):
         ax2.plot(x, result.load_share[:, j], label=result.pair_names[j] if result.pair_names else None)
     ax2.set_xlabel("pinion rotation (deg)")
+    ax2.set_title("load share of each tooth pair", fontsize=9)
+    if result.pair_names:
+        ax2.legend(fontsize=7)
     ax2.set_ylabel("load share (-)")
     ax2.set_ylim(-0.05, 1.05)
     pts = np.concatenate(result.points2 if member == "gear" else result.points1)
