@@ -21,22 +21,9 @@ def save_figure(fig, path: Path) -> str:
 
 def draft_maps(results, out: Path) -> str:
     """PNG of the forging-draft maps of several flanks: ``results`` is a list of (label, DraftResult)."""
-    import matplotlib.pyplot as plt
+    from ..viz.draft_plot import plot_draft_maps
 
-    from ..viz.draft_plot import plot_draft
-
-    n = len(results)
-    cols = 2
-    fig, axes = plt.subplots((n + 1) // cols, cols, figsize=(11, 4.2 * ((n + 1) // cols)), squeeze=False)
-    for ax, (label, r) in zip(axes.flat, results):
-        plot_draft(r, ax=ax)
-        d = np.round(r.die_direction, 3)
-        ax.set_title(f"{label}: n_out . v_d > 0 (no draft) on {100 * r.failing_area_fraction:.1f} % of the area, "
-                     f"v_d = {tuple(float(c) for c in d)}", fontsize=8)
-    for ax in list(axes.flat)[n:]:
-        ax.set_visible(False)
-    fig.tight_layout()
-    return save_figure(fig, out / "draft_map.png")
+    return save_figure(plot_draft_maps(results), out / "draft_map.png")
 
 
 def curvature_maps(grids, out: Path, title: str, labels=("k1 (profile)", "k2 (lengthwise)")) -> str:
@@ -52,28 +39,19 @@ def curvature_maps(grids, out: Path, title: str, labels=("k1 (profile)", "k2 (le
 
 def curvature_domain_maps(pair, grids, out: Path) -> str:
     """PNG of k1 and k2 of every log-spiral flank over its parameter domain (the parallelogram in (varphi, phi))."""
-    import matplotlib.pyplot as plt
+    from ..viz.flank_maps import plot_domain_fields
 
-    fig, axes = plt.subplots(2, 4, figsize=(17, 7.5), squeeze=False)
-    for col, ((m, s), g) in enumerate(grids.items()):
-        f = pair.flank(m, s)
-        varphi = np.asarray(g.psi) / math.sin(f.surface.base_cone_angle) + _phi_of(f, g)
-        phi = _phi_of(f, g)
-        for row, (name, vals) in enumerate((("k1 (profile)", g.k1), ("k2 (lengthwise)", g.k2))):
-            ax = axes[row, col]
-            mesh = ax.pcolormesh(np.degrees(varphi), np.degrees(phi), vals, shading="gouraud", cmap="viridis")
-            ax.set_title(f"{m.value} {s.value}: {name}", fontsize=9)
-            ax.set_xlabel("rolling angle varphi [deg]")
-            ax.set_ylabel("spiral parameter phi [deg]")
-            fig.colorbar(mesh, ax=ax, label="1/mm (convex +)", shrink=0.85)
-    fig.suptitle("Principal curvatures over the parallelogram domains (seed 000 Eq. (16))")
-    fig.tight_layout()
+    k1, k2 = [], []
+    for (m, s), g in grids.items():
+        sf = pair.flank(m, s).surface
+        phi = sf.phi_of_rho(np.asarray(g.rho))
+        varphi = sf.varphi_of(np.asarray(g.psi), phi)
+        x, y = np.degrees(varphi), np.degrees(phi)
+        for lst, name, vals in ((k1, "k1 (profile)", g.k1), (k2, "k2 (lengthwise)", g.k2)):
+            lst.append((f"{m.value} {s.value}: {name}", x, y, vals, "rolling angle varphi [deg]",
+                        "spiral parameter phi [deg]", "1/mm (convex +)"))
+    fig = plot_domain_fields(k1 + k2, title="Principal curvatures over the parallelogram domains (seed 000 Eq. (16))")
     return save_figure(fig, out / "curvature_domain.png")
-
-
-def _phi_of(flank, g):
-    """phi of grid points (LogSpiralFlank.phi_of_rho)."""
-    return flank.surface.phi_of_rho(np.asarray(g.rho))
 
 
 def pitch_traces(grids, pitch_angles, out: Path) -> str:
@@ -108,23 +86,10 @@ def meshing_pair_3d(pair, grids, out: Path) -> str:
                                         elev=elev, azim=0.0), out / "meshing_pair_3d.png")
 
 
-def _sphere_profile(points, radius):
-    """One point per grid column where the toe->heel rows cross the sphere |r| = radius (linear interpolation)."""
-    r = np.linalg.norm(points, axis=-1) - radius
-    out = []
-    for j in range(points.shape[1]):
-        g = r[:, j]
-        k = np.nonzero(np.diff(np.sign(g)))[0]
-        if k.size:
-            i = k[0]
-            t = g[i] / (g[i] - g[i + 1])
-            out.append(points[i, j] + t * (points[i + 1, j] - points[i, j]))
-    return np.array(out).reshape(-1, 3)
-
-
 def transverse_section(pair, grids, out: Path) -> str:
     """PNG of the tooth profiles of both members on the sphere of the mean cone distance, pair frame, zero roll."""
     from .._core.rotations import rot_z
+    from ..geometry.sections import sphere_section
     from ..viz.pair3d import plot_transverse_section
 
     g1 = pair.pinion.pitch_angle
@@ -137,7 +102,7 @@ def transverse_section(pair, grids, out: Path) -> str:
         for k in ks:
             R = rot_z(2 * math.pi * k / z)
             for s in (Side.CONVEX, Side.CONCAVE):
-                prof = _sphere_profile(grids[(member, s)].point @ R.T, Rm)
+                prof = sphere_section(grids[(member, s)].point @ R.T, Rm)
                 if len(prof) < 2:
                     continue
                 P = pair.to_pair_frame(member, prof)
@@ -174,74 +139,35 @@ def step_files(tooth_grids_by_member, out: Path) -> list[str]:
     return names
 
 
-def as_points(values) -> np.ndarray:
-    return np.asarray(values, float)
-
-
 def axial_section(grids, out: Path, title: str, tooth=None, blank=None) -> str:
     """PNG of every generated flank grid drawn in its member's axial section (axial position vs radius), with the
     blank outline; with ``tooth`` ({member: (convex, concave) grids of one tooth}) also the tooth profile on the
     sphere of the mean cone distance."""
-    import matplotlib.pyplot as plt
+    from ..geometry.sections import tooth_profile
+    from ..viz.axial_section import plot_axial_section
 
-    rows = 2 if tooth is not None else 1
-    fig, axes = plt.subplots(rows, 2, figsize=(11, 4.6 * rows), squeeze=False)
-    if tooth is not None:
-        for ax, member in zip(axes[1], (Member.PINION, Member.GEAR)):
-            _tooth_profile(ax, member, tooth[member], blank.Rm)
-    for ax, member in zip(axes[0], (Member.PINION, Member.GEAR)):
-        if blank is not None:
-            _blank_outline(ax, blank, member)
-        for side, color in ((Side.CONVEX, "tab:blue"), (Side.CONCAVE, "tab:red")):
-            g = grids.get((member, side))
-            if g is None:
-                continue
-            z, r = g.points[..., 2], np.hypot(g.points[..., 0], g.points[..., 1])
-            ax.plot(z, r, color=color, lw=0.4)
-            ax.plot(z.T, r.T, color=color, lw=0.4)
-            ax.plot([], [], color=color, label=side.value)
-        ax.set_title(f"{member.value}: flank grids in the axial section")
-        ax.set_xlabel("axial position z [mm]")
-        ax.set_ylabel("radius [mm]")
-        ax.set_aspect("equal", adjustable="datalim")
-        ax.legend(fontsize=8)
-    fig.suptitle(title)
-    fig.tight_layout()
-    return save_figure(fig, out / "axial_section.png")
+    members = []
+    for member in (Member.PINION, Member.GEAR):
+        members.append({
+            "name": member.value,
+            "grids": {s.value: grids[(member, s)].points for s in (Side.CONVEX, Side.CONCAVE) if (member, s) in grids},
+            "outline": blank_outline(blank, member) if blank is not None else None,
+            "profile": (tooth_profile(np.asarray(tooth[member][0][0]), np.asarray(tooth[member][1][0]), blank.Rm)
+                        if tooth is not None else None),
+            "radius": blank.Rm if blank is not None else None,
+        })
+    return save_figure(plot_axial_section(members, title), out / "axial_section.png")
 
 
-def _blank_outline(ax, blank, member):
-    """Face cone, root cone, toe and heel of the blank in the axial section (front/back cones normal to the pitch
-    cone), dashed."""
+def blank_outline(blank, member):
+    """(5, 2) axial position and radius, mm, of the blank's root, face, toe and heel lines in the axial section
+    (front and back cones perpendicular to the pitch cone), closed."""
     i = member.index
     d, da, df = (getattr(blank, f"{n}{i}") for n in ("delta", "delta_a", "delta_f"))
     Ri, Re, Rm = getattr(blank, f"Ri{i}"), getattr(blank, f"Re{i}"), blank.Rm
     ham, hfm = getattr(blank, f"ham{i}"), getattr(blank, f"hfm{i}")
-    R = np.array([Ri, Re])
-    top = ham + (R - Rm) * math.tan(da - d)
-    root = -hfm - (R - Rm) * math.tan(d - df)
-
-    def zr(R, h):
-        return R * math.cos(d) - h * math.sin(d), R * math.sin(d) + h * math.cos(d)
-
-    corners = [zr(R[0], root[0]), zr(R[1], root[1]), zr(R[1], top[1]), zr(R[0], top[0]), zr(R[0], root[0])]
-    ax.plot([c[0] for c in corners], [c[1] for c in corners], "k--", lw=0.8, label="blank")
-
-
-def _tooth_profile(ax, member, grids, radius):
-    """Both flank profiles of one tooth on the sphere |r| = radius, in (arc from the tooth centre, radius) mm."""
-    pts = [_sphere_profile(np.asarray(g[0], float), radius) for g in grids]
-    if any(len(p) < 2 for p in pts):
-        ax.set_visible(False)
-        return
-    allp = np.concatenate(pts)
-    az0 = float(np.angle(np.mean(np.exp(1j * np.arctan2(allp[:, 1], allp[:, 0])))))
-    for p, side, color in zip(pts, (Side.CONVEX, Side.CONCAVE), ("tab:blue", "tab:red")):
-        az = np.angle(np.exp(1j * (np.arctan2(p[:, 1], p[:, 0]) - az0)))
-        rr = np.hypot(p[:, 0], p[:, 1])
-        ax.plot(az * rr, rr, color=color, label=side.value)
-    ax.set_title(f"{member.value}: tooth profile on the sphere R = {radius:.3f} mm")
-    ax.set_xlabel("arc from the tooth centre [mm]")
-    ax.set_ylabel("radius from the axis [mm]")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.legend(fontsize=8)
+    R = np.array([Ri, Re, Re, Ri, Ri])
+    h = np.array([-hfm - (Ri - Rm) * math.tan(d - df), -hfm - (Re - Rm) * math.tan(d - df),
+                  ham + (Re - Rm) * math.tan(da - d), ham + (Ri - Rm) * math.tan(da - d),
+                  -hfm - (Ri - Rm) * math.tan(d - df)])
+    return np.stack([R * math.cos(d) - h * math.sin(d), R * math.sin(d) + h * math.cos(d)], -1)

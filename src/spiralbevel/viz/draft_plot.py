@@ -68,3 +68,22 @@ def plot_draft(result, ax=None, coords: str = "varphi"):
                  f"{100 * result.failing_area_fraction:.2f}% of area fails", fontsize=9)
     ax.legend(handles=handles, fontsize=8, loc="best")
     return fig
+
+
+def plot_draft_maps(results):
+    """Several draft maps side by side: ``results`` is a list of (label, DraftResult)."""
+    import matplotlib.pyplot as plt
+
+    n = len(results)
+    cols = 2
+    rows = (n + 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(11, 4.2 * rows), squeeze=False)
+    for ax, (label, r) in zip(axes.flat, results):
+        plot_draft(r, ax=ax)
+        d = tuple(float(c) for c in np.round(r.die_direction, 3))
+        ax.set_title(f"{label}: n_out . v_d > 0 (no draft) on {100 * r.failing_area_fraction:.1f} % of the area, "
+                     f"v_d = {d}", fontsize=8)
+    for ax in list(axes.flat)[n:]:
+        ax.set_visible(False)
+    fig.tight_layout()
+    return fig

@@ -57,3 +57,29 @@ def _outline(ax, z, r):
     """Toe, heel, root and top lines of a projected flank grid."""
     for zz, rr in ((z[0], r[0]), (z[-1], r[-1]), (z[:, 0], r[:, 0]), (z[:, -1], r[:, -1])):
         ax.plot(zz, rr, color="k", lw=0.8)
+
+
+def plot_domain_fields(panels, title="", ncols=4):
+    """Scalar fields over flank parameter domains.
+
+    Parameters
+    ----------
+    panels : list of (label : str, x : (n, m) float, y : (n, m) float, values : (n, m) float, xlabel, ylabel, unit)
+    """
+    import matplotlib.pyplot as plt
+
+    n = len(panels)
+    rows = int(np.ceil(n / ncols))
+    fig, axes = plt.subplots(rows, ncols, figsize=(4.25 * ncols, 3.75 * rows), squeeze=False)
+    for ax, (label, x, y, vals, xlabel, ylabel, unit) in zip(axes.flat, panels):
+        mesh = ax.pcolormesh(x, y, vals, shading="gouraud", cmap="viridis")
+        ax.set_title(label, fontsize=9)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        fig.colorbar(mesh, ax=ax, label=unit, shrink=0.85)
+    for ax in list(axes.flat)[n:]:
+        ax.set_visible(False)
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    return fig
