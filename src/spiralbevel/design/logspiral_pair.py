@@ -29,7 +29,8 @@ from spiralbevel.geometry.curves import psi_of_cone_angle
 from spiralbevel.geometry.domain import ParallelogramDomain
 from spiralbevel.geometry.logspiral import FlankGeometry, LogSpiralFlank
 
-__all__ = ["BlankBoundaries", "DesignedFlank", "LogSpiralMemberDesign", "LogSpiralPair", "design_logspiral_pair"]
+__all__ = ["BlankBoundaries", "DesignedFlank", "LogSpiralMemberDesign", "LogSpiralPair", "design_logspiral_pair",
+           "pair_recipe"]
 
 
 @dataclass(frozen=True)
@@ -259,6 +260,32 @@ def _check_lands(member, z, surface, flanks, sigma, psi_lo, psi_hi):
                             f"{np.degrees(space):.4f} deg): raise the root angle or lower the thickness")
 
 
+def pair_recipe(z1, z2, shaft_angle, normal_pressure_angle, spiral_angle):
+    """The verified design recipe of ERRATA §0.1 for a log-spiral pair with line contact.
+
+    Parameters
+    ----------
+    z1, z2 : int
+    shaft_angle, normal_pressure_angle, spiral_angle : float, rad
+        Sigma, alpha_n and the mean spiral angle beta_m on the pitch cones.
+
+    Returns
+    -------
+    (g1, g2, alpha_t, delta1, delta2, beta_plane) : floats, rad
+        Pitch angles (tan g1 = sin S / (z2/z1 + cos S)), transverse pressure angle (tan a_t = tan a_n / cos b_m),
+        base cones (sin d_i = sin g_i cos a_t, so sin d1 : sin d2 = z1 : z2) and the spiral angle in the base-cone
+        tangent plane (sin beta = cos a_n sin b_m), unsigned.
+    """
+    S = float(shaft_angle)
+    g1 = float(np.arctan2(np.sin(S), z2 / z1 + np.cos(S)))
+    g2 = S - g1
+    alpha_t = float(np.arctan(np.tan(normal_pressure_angle) / np.cos(spiral_angle)))
+    d1 = float(np.arcsin(np.sin(g1) * np.cos(alpha_t)))
+    d2 = float(np.arcsin(np.sin(g2) * np.cos(alpha_t)))
+    beta_plane = float(np.arcsin(np.cos(normal_pressure_angle) * np.sin(spiral_angle)))
+    return g1, g2, alpha_t, d1, d2, beta_plane
+
+
 def design_logspiral_pair(z1, z2, shaft_angle, normal_pressure_angle, spiral_angle, pinion_hand, boundaries,
                           thickness=None) -> LogSpiralPair:
     """Design a conjugate pair of log-spiral bevel gears (line contact, zero backlash).
@@ -317,16 +344,11 @@ def design_logspiral_pair(z1, z2, shaft_angle, normal_pressure_angle, spiral_ang
     for name, b in (("boundaries[pinion]", b1), ("boundaries[gear]", b2)):
         if not isinstance(b, BlankBoundaries):
             raise DesignError.single(name, b, "a BlankBoundaries instance", "-")
-    g1 = float(np.arctan2(np.sin(S), z2 / z1 + np.cos(S)))
-    g2 = S - g1
+    g1, g2, alpha_t, d1, d2, beta_plane = pair_recipe(z1, z2, S, alpha_n, beta_m)
     chk.check_boundaries("boundaries[pinion]", b1, g1)
     chk.check_boundaries("boundaries[gear]", b2, g2)
-    alpha_t = float(np.arctan(np.tan(alpha_n) / np.cos(beta_m)))
-    d1 = float(np.arcsin(np.sin(g1) * np.cos(alpha_t)))
-    d2 = float(np.arcsin(np.sin(g2) * np.cos(alpha_t)))
-    beta_plane = float(np.arcsin(np.cos(alpha_n) * np.sin(beta_m)))
-    psi1 = float(np.arccos(np.cos(g1) / np.cos(d1)))
-    psi2 = float(np.arccos(np.cos(g2) / np.cos(d2)))
+    psi1 = float(psi_of_cone_angle(g1, d1))
+    psi2 = float(psi_of_cone_angle(g2, d2))
     pitch_angle1 = 2 * np.pi / z1
     pn = pitch_angle1 * b1.mean_cone_distance * np.sin(g1) * np.cos(beta_m)
     if thickness is None:

@@ -14,7 +14,9 @@ import numpy as np
 
 from .._core import logspiral as _ls
 from .._core.rotations import rot_z, rot_y
+from ..design.logspiral_pair import pair_recipe
 from ..errors import DesignError, GeometryError
+from ..geometry.curves import psi_of_cone_angle
 
 __all__ = ["LogSpiralSurface", "LogSpiralPair", "conjugate_logspiral_pair"]
 
@@ -184,10 +186,6 @@ class LogSpiralPair:
     spiral_parameter: float
 
 
-def _psi_of_cone(gamma, delta):
-    return np.arccos(np.clip(np.cos(gamma) / np.cos(delta), -1.0, 1.0))
-
-
 def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressure_angle=np.radians(20.0),
                              spiral_angle=np.radians(35.0), mean_cone_distance=115.9511, face_width=37.0,
                              addendum=(5.10, 1.54), dedendum=(2.24, 5.80)) -> LogSpiralPair:
@@ -209,17 +207,12 @@ def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressur
     that both flanks pass through the pitch point A_m p with opposite outward normals (ERRATA §2.2 theorem).
     """
     S = float(shaft_angle)
-    g1 = np.arctan2(np.sin(S), z2 / z1 + np.cos(S))
-    g2 = S - g1
-    at = np.arctan(np.tan(normal_pressure_angle) / np.cos(spiral_angle))
-    d1 = np.arcsin(np.sin(g1) * np.cos(at))
-    d2 = np.arcsin(np.sin(g2) * np.cos(at))
-    beta = np.arcsin(np.cos(normal_pressure_angle) * np.sin(spiral_angle))
+    g1, g2, _, d1, d2, beta = pair_recipe(z1, z2, S, normal_pressure_angle, spiral_angle)
     Am, b = float(mean_cone_distance), float(face_width)
     p = np.array([np.sin(g1), 0.0, np.cos(g1)])
     target = Am * p
     # pinion: contact plane varphi* = +-acos(tan d1 / tan g1) at phi1 = 0; psi = +psi_pitch (convex branch)
-    psi1 = _psi_of_cone(g1, d1)
+    psi1 = psi_of_cone_angle(g1, d1)
     best = None
     for sgn in (1.0, -1.0):
         vphi = sgn * np.arccos(np.tan(d1) / np.tan(g1))
@@ -240,7 +233,7 @@ def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressur
         if root <= delta:
             raise GeometryError.single("root cone", np.degrees(root), f"> base cone {np.degrees(delta):.4f}", "deg",
                                        "the flank would cross the singular edge psi = 0")
-        psis = sorted(sign * _psi_of_cone(c, delta) for c in (root, face))
+        psis = sorted(sign * psi_of_cone_angle(c, delta) for c in (root, face))
         return tuple(psis), tuple(sorted(phis))
 
     psr1, phr1 = ranges(rho01, d1, beta, g1, addendum[0], dedendum[0], 1.0)
@@ -250,7 +243,7 @@ def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressur
     B2 = rot_y(S)
     r2 = B2.T @ target
     n2_target = -(B2.T @ n1)
-    psi2m = _psi_of_cone(g2, d2)
+    psi2m = psi_of_cone_angle(g2, d2)
     best = None
     for sgn in (1.0, -1.0):
         psi2 = sgn * psi2m
