@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._core.rotations import rot_z
 from ..conventions import Member, Side
 from ..errors import DesignError, GeometryError
 from ..meshing.tca_result import ARCSEC
@@ -231,8 +232,7 @@ def tooth_rotation(blank, setups, member):
     side = 1.0 if mc.normal @ e_az > 0 else -1.0     # material toward -side
     target = _azimuth(mc.point) - side * angle
     rot = math.remainder(target - _azimuth(mk.point), 2 * math.pi)
-    c, s_ = math.cos(rot), math.sin(rot)
-    nk = np.array([c * mk.normal[0] - s_ * mk.normal[1], s_ * mk.normal[0] + c * mk.normal[1], mk.normal[2]])
+    nk = rot_z(rot) @ mk.normal
     if np.sign(nk @ e_az) == side:
         raise GeometryError.single(f"{member.value}.flanks", "inconsistent",
                                    "convex and concave outward normals facing away from one tooth", "-",
@@ -242,8 +242,7 @@ def tooth_rotation(blank, setups, member):
 
 def rotate_grid(points, normals, angle):
     """Rotate (..., 3) points and normals about +z by ``angle`` rad."""
-    c, s = math.cos(angle), math.sin(angle)
-    R = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    R = rot_z(float(angle))
     return points @ R.T, normals @ R.T
 
 

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from .._core.rotations import rot_z
 from ..conventions import Member, Side
 from ..meshing.generated_surface import phased_for_pair
 from ..meshing.kinematics import BevelPairKinematics
@@ -15,8 +16,7 @@ from .tca import SIDES
 
 
 def _rz(a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    return rot_z(float(a))
 
 
 def _tooth_grids(grids, member, tca_side, surface_rotation, rot):

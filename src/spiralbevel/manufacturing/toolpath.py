@@ -15,6 +15,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import brentq
 
+from .._core.rotations import rot_z
 from ..conventions import Side
 from ..errors import DesignError, DesignWarning, GeometryError, Problem
 from ._flank import FlankLike, FlankParams, check_flank, outward_geometry
@@ -109,8 +110,7 @@ class ToolPath:
 
     def rotated(self, angle: float) -> "ToolPath":
         """The same path turned by ``angle`` (rad) about the member axis +z (a flank placed in its member frame)."""
-        c, s = np.cos(angle), np.sin(angle)
-        R = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        R = rot_z(float(angle))
         vec = ("surface", "normal", "feed", "center", "tip", "axis")
         paths = tuple(replace(p, **{k: getattr(p, k) @ R.T for k in vec}) for p in self.paths)
         return replace(self, paths=paths)

@@ -13,6 +13,7 @@ import numpy as np
 
 from .._core.generation import axial_radial, contact_point
 from .._core.generation_jet import generated_jet
+from .._core.rotations import rot_z
 from ..conventions import Hand
 
 __all__ = ["GeneratedSurface", "phased_for_pair"]
@@ -33,8 +34,7 @@ class GeneratedSurface:
     def __init__(self, flank, rotation: float = 0.0):
         self.flank = flank
         self.rotation = float(rotation)
-        c, s = math.cos(self.rotation), math.sin(self.rotation)
-        self._R = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        self._R = rot_z(self.rotation)
         mp = flank.mean_point()
         self.reference_params = np.array([mp.u, mp.psi_c])
         self.mean_point = mp

@@ -33,6 +33,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from ..._core.rotations import rot_z
 from ...conventions import Member
 from ...errors import ConvergenceError, DesignError, Problem
 from ...generation import generate_flank
@@ -54,8 +55,7 @@ class _Surface(GeneratedSurface):
     def __init__(self, flank, rotation, reference_params):
         self.flank = flank
         self.rotation = float(rotation)
-        c, s = math.cos(self.rotation), math.sin(self.rotation)
-        self._R = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        self._R = rot_z(self.rotation)
         self.reference_params = np.asarray(reference_params, float).copy()
 
 
