@@ -137,8 +137,16 @@ class ToothFlank:
         Seed 003 with ERRATA §3.1 step 7: radius R_m sin(delta) - h cos(delta), axial R_m cos(delta) + h sin(delta).
         The spiral angle is measured on the cone of pitch angle through the point, the normal pressure angle is
         asin|n . N| with N the unit normal of that cone (ERRATA §0.3); ``pressure_angle_root`` uses a cone of root
-        angle through the point instead (the plane of the generating crown gear).
+        angle through the point instead (the plane of the generating crown gear). Computed once per depth (the
+        flank is immutable); every analysis (reports, phasing, synthesis, tooth assembly) asks for it.
         """
+        cache = self.__dict__.setdefault("_mean_points", {})
+        key = float(depth)
+        if key not in cache:
+            cache[key] = self._mean_point(key)
+        return cache[key]
+
+    def _mean_point(self, depth: float) -> MeanPoint:
         ol = self.outline
         ax, rad = ol.axial_radius(ol.Rm, -float(depth))
         fp = self.locate(ax, rad)
