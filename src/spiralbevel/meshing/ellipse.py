@@ -158,8 +158,8 @@ def hertz_semi_axes(lam, approach):
     """Semi-axes (..., 2) mm (a >= b) of the Hertz contact ellipse at the elastic approach ``approach`` mm.
 
     The elastic contact (Hertz) is smaller than the geometric ellipse s(xi) = approach of :func:`ellipse_axes`: with
-    A = lam_1/2 (Johnson, Contact Mechanics, Eqs. (4.39)-(4.41)) a^2 = approach (K - E) / (A K e^2), b = a sqrt(1 - e^2);
-    a sphere (e = 0) gives a^2 = R approach, half of the geometric a^2 = 2 R approach. Non-positive lam: inf.
+    A = lam_1/2 (Johnson, Contact Mechanics, Eqs. (4.39)-(4.41)) a^2 = approach (K - E) / (A K e^2),
+    b = a sqrt(1 - e^2); a sphere (e = 0) gives a^2 = R approach, half of the geometric a^2 = 2 R approach. Non-positive lam: inf.
     """
     _check_approach(approach)
     lam = np.asarray(lam, float)
