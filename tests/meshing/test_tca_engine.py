@@ -209,3 +209,23 @@ def test_edge_positions_report_no_te(crowned_result, crowned, pair, kin):
     # the extended model (flank_bounds=False) reports the extended TE there instead
     ext = solve_tca(crowned, pair.gear, kin, flank_bounds=False)
     assert np.all(np.isfinite(ext.te)) and not np.any(ext.status == ContactStatus.EDGE)
+
+
+@pytest.mark.parametrize("crown", [(0.5, 0.0, 5.0), (2.0, 0.0, 1.0), (0.2, 0.0, 20.0)])
+def test_no_te_from_points_off_the_real_flanks(pair, kin, crown):
+    """Scan of crownings and the four misalignments: every reported TE comes from a contact whose two points lie on
+    the real flanks (the domains' contains), and every EDGE position names a crossed boundary."""
+    from spiralbevel.meshing.misalignment import Misalignment
+
+    surf = NormalDeviation(pair.pinion, quadratic_crowning(pair.pinion.reference_params, crown))
+    for mis in (None, Misalignment(pinion_axial=0.1), Misalignment(gear_axial=0.1), Misalignment(offset=0.1),
+                Misalignment(shaft_angle=np.radians(0.05))):
+        try:
+            res = solve_tca(surf, pair.gear, kin, misalignment=mis)
+        except NoContactError:
+            continue
+        fin = np.isfinite(res.te)
+        i, j = np.flatnonzero(fin), res.pair[fin]
+        assert np.all(surf.contains(res.params1[i, j])) and np.all(pair.gear.contains(res.params2[i, j]))
+        assert np.all(res.status[~fin] != ContactStatus.OK)
+        assert all(name in pair.gear.boundary_names for _, _, _, name in res.edges)

@@ -2,8 +2,9 @@
 :class:`~spiralbevel.meshing.contact_surface.ContactSurface` flanks.
 
 For each pinion rotation phi1 the contact system (coincident points, opposite outward normals; 5 equations in the
-two surface parameters of each flank and the gear rotation phi2) is solved for every tooth pair. The pair in contact
-is the one that leads the gear furthest in its driven direction, i.e. the largest TE in the sign convention of
+two surface parameters of each flank and the gear rotation phi2) is solved for every tooth pair. Only solutions
+with both points on the real flanks (the surfaces' ``contains``) are contacts; the pair in contact is the one of
+them that leads the gear furthest in its driven direction, i.e. the largest TE in the sign convention of
 :class:`~spiralbevel.meshing.tca_result.TCAResult` (seed 001 §5 calls it the pair with the "least transmission
 error": with TE curves <= 0 that is the least in magnitude; docs/conventions.md "Misalignments" and "TCA").
 
