@@ -149,14 +149,17 @@ def test_tip_thickness_tends_to_the_rack_value():
     assert tip_thickness(math.inf, s, ha, a, a) == pytest.approx(rack, abs=1e-15)
 
 
-def test_chordal_values_by_coordinates():
+@pytest.mark.parametrize("delta", [R(19.75), R(70.25), R(45.0)])
+def test_chordal_values_by_coordinates(delta):
+    """Chord and sagitta of the arc smn on the virtual gear circle built from coordinates; the standard's chordal
+    addendum takes the sagitta times cos(delta)."""
     smn, ham, dvn = 6.7575, 4.8369, 82.241
     half = smn / dvn  # half angle subtended by the arc thickness
     p = 0.5 * dvn * np.array([math.sin(half), math.cos(half)])
     q = 0.5 * dvn * np.array([-math.sin(half), math.cos(half)])
-    smnc, hamc = chordal_values(smn, ham, dvn)
+    smnc, hamc = chordal_values(smn, ham, dvn, delta)
     assert smnc == pytest.approx(np.linalg.norm(p - q), abs=1e-12)
-    assert hamc == pytest.approx(0.5 * dvn + ham - p[1], abs=1e-12)  # tip circle to chord
+    assert hamc == pytest.approx(ham + (0.5 * dvn - p[1]) * math.cos(delta), abs=1e-12)  # tip circle to chord
 
 
 def test_undercut_limit_is_the_interference_point_depth():
