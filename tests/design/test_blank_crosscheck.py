@@ -90,8 +90,31 @@ def test_face_and_root_cone_lines_by_plane_geometry(taper, k):
         assert z_axis == pytest.approx(apex, abs=1e-9)
     assert 2 * tip_e[1] == pytest.approx(g("dae"), abs=1e-9)
     assert 2 * tip_i[1] == pytest.approx(g("dai"), abs=1e-9)
+    assert 2 * root_e[1] == pytest.approx(g("dfe"), abs=1e-9)
+    assert 2 * root_i[1] == pytest.approx(g("dfi"), abs=1e-9)
     assert tip_e[0] == pytest.approx(g("txo"), abs=1e-9)
     assert tip_i[0] == pytest.approx(g("txi"), abs=1e-9)
+    assert (bl.Rm * pitch)[0] == pytest.approx(g("tzm"), abs=1e-9)  # crossing point (= pitch apex) to mean point
+    # whole depth perpendicular to the root cone: distance of the heel tip point from the root line
+    d_root = (root_e - root_i) / np.linalg.norm(root_e - root_i)
+    v = tip_e - root_i
+    assert d_root[0] * v[1] - d_root[1] * v[0] == pytest.approx(g("ht"), abs=1e-9)
+
+
+@pytest.mark.parametrize("kw", [dict(), dict(taper="standard"), dict(taper="uniform"), dict(z1=11, z2=43, b=26.0),
+                                dict(shaft_angle=R(75.0)), dict(shaft_angle=R(110.0), z1=20, z2=30)])
+def test_whole_depth_normal_to_root_equals_the_standard_closed_form(kw):
+    """h_t by the standard's expression ((t_zF + t_xo)/cos δa)·sin(θa + θf) − (t_zR − t_zF)·sin δf, built from the
+    apex and crown distances, against the point-to-line distance the code uses."""
+    bl = _blank(**kw)
+    for k in (1, 2):
+        g = lambda n: getattr(bl, f"{n}{k}")  # noqa: E731
+        if not (g("delta_a") < R(89.0) and g("delta_f") > R(1.0)):
+            continue
+        iso = ((g("tzF") + g("txo")) / math.cos(g("delta_a")) * math.sin(g("theta_a") + g("theta_f"))
+               - (g("tzR") - g("tzF")) * math.sin(g("delta_f")))
+        assert g("ht") == pytest.approx(iso, abs=1e-9)
+        assert g("ht") < g("he")  # the perpendicular to the root is shorter than the depth along the heel back cone
 
 
 def test_standard_taper_root_lines_pass_through_the_pitch_apex():
@@ -193,6 +216,32 @@ def test_thickness_and_backlash_balance():
     # no backlash, no thickness factor: the rack rule s1 - s2 = 2 * x_hm1 * mmn * (tan aD + tan aC)
     nb = _blank(jen=None, k_t=0.0)
     assert nb.smn1 - nb.smn2 == pytest.approx(4 * nb.x_hm1 * nb.mmn * math.tan(R(20)), abs=1e-12)
+
+
+def test_backlash_carried_back_to_the_heel_is_the_given_one():
+    """Second route: the circular thickness removed at the mean point (pi*mmn - smn1 - smn2, normal section) is turned
+    into the transverse section (/cos βm), scaled along the cone to the heel (Re2/Rm), into the heel normal section
+    (cos βe2) and onto the flank normal (cos αn): that is the outer normal backlash jen."""
+    for kw in (dict(), dict(jen=0.3, k_t=0.0), dict(jen=None, jet=0.2, alpha_dD=R(22.0), alpha_dC=R(18.0))):
+        bl = _blank(**kw)
+        removed = math.pi * bl.mmn - bl.smn1 - bl.smn2
+        alpha_n = 0.5 * (bl.alpha_nD + bl.alpha_nC)
+        jen = removed / math.cos(bl.beta_m2) * bl.Re2 / bl.Rm * math.cos(bl.beta_e2) * math.cos(alpha_n)
+        assert jen == pytest.approx(bl.jen, abs=1e-12)
+        assert bl.jmn == pytest.approx(removed * math.cos(alpha_n), abs=1e-12)  # mean normal backlash
+        # half from each member: both members lose the same thickness relative to the backlash-free design
+        free = _blank(**{**kw, "jen": None, "jet": None})
+        assert free.smn1 - bl.smn1 == pytest.approx(free.smn2 - bl.smn2, abs=1e-12)
+        assert free.smn1 - bl.smn1 == pytest.approx(0.5 * removed, abs=1e-12)
+
+
+def test_thickness_factor_moves_thickness_from_wheel_to_pinion():
+    """The rack (basic crown gear) picture: a thickness modification x_smn·mmn on each flank of the pinion's rack
+    tooth, 2·x_smn·mmn = k_t·mmn in all, taken from the wheel; the sum stays one normal pitch."""
+    a, b = _blank(jen=None, k_t=0.0), _blank(jen=None, k_t=0.12)
+    assert b.smn1 - a.smn1 == pytest.approx(0.12 * a.mmn, abs=1e-12)
+    assert a.smn2 - b.smn2 == pytest.approx(0.12 * a.mmn, abs=1e-12)
+    assert b.smn1 + b.smn2 == pytest.approx(math.pi * b.mmn, abs=1e-12)
 
 
 def test_backlash_given_as_jet_or_jen_is_the_same():
