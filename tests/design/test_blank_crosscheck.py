@@ -260,3 +260,42 @@ def test_crown_wheel_limit_is_continuous():
     assert crown.delta2 == pytest.approx(math.pi / 2, abs=1e-15) and crown.dvn2 == math.inf
     for name in ("sam2", "sai2", "sae2", "smnc2", "hamc2", "smn2", "hae2", "tzR2"):
         assert getattr(crown, name) == pytest.approx(getattr(near, name), abs=1e-5), name
+
+
+@pytest.mark.parametrize("kw", [dict(), dict(z1=12, z2=41, met=5.0, de2=None, b=30.0, rc0=76.2),
+                                dict(beta_m=R(25.0), rc0=152.4, shaft_angle=R(75.0))])
+def test_duplex_taper_keeps_the_completing_slot_consistent_with_the_pitch(kw):
+    """Independent of the ISO duplex formula's derivation: with a constant root slot width (face milling, completing),
+    the two members' pitch-line thicknesses add up to the normal pitch p_n(R) = π·mmt·(R/Rm)·cos β(R) to first order
+    around the mean point *only* for the duplex dedendum angle sum. Checked by finite differences of
+    s_n1(R) + s_n2(R) − p_n(R) over R (quadratic residual), and a standard taper fails it."""
+    from spiralbevel.design.blank_checks import normal_thickness
+
+    def excess(bl, r):
+        """s_n1 + s_n2 − p_n at cone distance r, with the section quantities of the model at r."""
+        import dataclasses
+
+        beta = spiral_angle_at(r, bl.Rm, bl.beta_m2, bl.rc0)
+        fields = {}
+        for k in (1, 2):
+            fields[f"Re{k}"] = r
+            fields[f"beta_e{k}"] = beta
+            fields[f"hfe{k}"] = getattr(bl, f"hfm{k}") + (r - bl.Rm) * math.tan(getattr(bl, f"theta_f{k}"))
+        sec = dataclasses.replace(bl, **fields)
+        pn = math.pi * bl.mmt * r / bl.Rm * math.cos(beta)
+        return normal_thickness(sec, 1, "e") + normal_thickness(sec, 2, "e") - pn
+
+    for taper, first_order in (("duplex", True), ("standard", False)):
+        bl = _blank(jen=None, taper=taper, **kw)
+        h = 0.5
+        slope = (excess(bl, bl.Rm + h) - excess(bl, bl.Rm - h)) / (2 * h)  # central difference, error O(h^2)
+        assert excess(bl, bl.Rm) == pytest.approx(0.0, abs=1e-12)
+        # the standard's sum is written with angles where the slot argument has tangents: the residual slope is
+        # 2·tan αn·(Σθf − Σ tan θf), a third-order small quantity (3.7e-4 for Sample 1)
+        tf = (bl.theta_f1, bl.theta_f2)
+        small_angle = 2 * math.tan(R(20)) * (sum(tf) - sum(math.tan(t) for t in tf))
+        if first_order:
+            # O(h^2) truncation of the central difference with h = 0.5 mm: at most 2.3e-6 over these cases
+            assert slope == pytest.approx(small_angle, abs=5e-6)
+        else:
+            assert abs(slope - small_angle) > 1e-3
