@@ -69,8 +69,9 @@ def dedendum_angle_sum_duplex(met: float, re: float, rm: float, beta_m: float, t
     beta_m : float, rad
         Mean spiral angle.
     tan_alpha : float
-        Tangent of the normal pressure angle; for unequal flank angles the mean (tan αnD + tan αnC)/2, which is
-        exact for the slot-width argument behind the formula (the slot narrows by Δh·(tan αD + tan αC)).
+        Tangent of the normal pressure angle; for unequal flank angles ISO 23509 takes the mean angle
+        αn = (αnD + αnC)/2 (the slot-width argument behind the formula would give (tan αnD + tan αnC)/2, larger by
+        about 0.2 % for αnD − αnC = 5°).
     rc0 : float, mm
         Cutter radius.
 
@@ -112,7 +113,7 @@ def taper_angles(
     beta_m : float, rad
         Mean spiral angle.
     tan_alpha : float
-        Mean tangent of the normal pressure angles.
+        Tangent of the mean normal pressure angle (αnD + αnC)/2.
     rc0 : float, mm
         Cutter radius.
     c_ham : float

@@ -140,7 +140,7 @@ def mean_normal_thickness(mmn: float, x_hm1: float, x_sm1: float, x_sm2: float, 
     -----
     The basic crown-gear (rack) argument: a profile shift x·m widens the tooth on the pitch line by
     x·m·(tan αD + tan αC); the standard writes 2·x·m·tan αn with the mean angle, which is the same for equal flank
-    angles and differs by less than 0.1 % of the shift term for αD − αC up to 5°.
+    angles and differs by about 0.2 % of the shift term for αD − αC = 5°.
     """
     t = math.tan(alpha_n)
     return (0.5 * math.pi * mmn + 2.0 * mmn * (x_sm1 + x_hm1 * t),
