@@ -59,7 +59,8 @@ def member_dimensions(
     * h_t: distance from the heel tip point (t_xo, dae/2) to the root cone line, measured along the root cone's
       normal. The standard writes it as ((t_zF + t_xo)/cos δa)·sin(θa + θf) − (t_zR − t_zF)·sin δf; here it is the
       point-to-line distance to the line through the mean root point, which stays finite for δa = 90° and δf <= 0
-      (same value; tests/design compare both).
+      (same value; tests/design compare both). Since the heel tip lies h_e above the heel root point along the
+      pitch-cone normal, h_t = h_e·cos θf.
     """
     sd, cd = math.sin(delta), math.cos(delta)
     be, bi = re - rm, rm - ri
