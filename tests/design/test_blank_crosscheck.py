@@ -86,8 +86,9 @@ def test_face_and_root_cone_lines_by_plane_geometry(taper, k):
     for p_e, p_i, ang, apex in ((tip_e, tip_i, g("delta_a"), -g("tzF")), (root_e, root_i, g("delta_f"), -g("tzR"))):
         d = p_e - p_i
         assert math.atan2(d[1], d[0]) == pytest.approx(ang, abs=1e-12)
-        z_axis = p_e[0] - p_e[1] * d[0] / d[1]  # where the line meets r = 0
-        assert z_axis == pytest.approx(apex, abs=1e-9)
+        if k == 2:  # the pinion's apexes follow the wheel's cones (test_pinion_apexes_from_the_wheel_cones)
+            z_axis = p_e[0] - p_e[1] * d[0] / d[1]  # where the line meets r = 0
+            assert z_axis == pytest.approx(apex, abs=1e-9)
     assert 2 * tip_e[1] == pytest.approx(g("dae"), abs=1e-9)
     assert 2 * tip_i[1] == pytest.approx(g("dai"), abs=1e-9)
     assert 2 * root_e[1] == pytest.approx(g("dfe"), abs=1e-9)
@@ -95,10 +96,42 @@ def test_face_and_root_cone_lines_by_plane_geometry(taper, k):
     assert tip_e[0] == pytest.approx(g("txo"), abs=1e-9)
     assert tip_i[0] == pytest.approx(g("txi"), abs=1e-9)
     assert (bl.Rm * pitch)[0] == pytest.approx(g("tzm"), abs=1e-9)  # crossing point (= pitch apex) to mean point
-    # whole depth perpendicular to the root cone: distance of the heel tip point from the root line
-    d_root = (root_e - root_i) / np.linalg.norm(root_e - root_i)
-    v = tip_e - root_i
-    assert d_root[0] * v[1] - d_root[1] * v[0] == pytest.approx(g("ht"), abs=1e-9)
+    if k == 2:  # whole depth perpendicular to the root cone: distance of the heel tip point from the root line
+        d_root = (root_e - root_i) / np.linalg.norm(root_e - root_i)
+        v = tip_e - root_i
+        assert d_root[0] * v[1] - d_root[1] * v[0] == pytest.approx(g("ht"), abs=1e-9)
+
+
+@pytest.mark.parametrize("kw", [dict(), dict(taper="standard"), dict(taper="uniform"), dict(shaft_angle=R(75.0)),
+                                dict(shaft_angle=R(110.0), z1=20, z2=30)])
+def test_pinion_apexes_from_the_wheel_cones(kw):
+    """The standard's pinion face (root) cone lies at the clearance c, perpendicular, from the wheel's root (face)
+    cone. Built in the plane of both axes from the *wheel's* axis, apexes and angles (pinion axis along z from the
+    crossing point, wheel axis at the shaft angle Σ): offset each wheel line by c toward the pinion axis and cut the
+    pinion axis. Also the standard's closed forms for a = 0, t_zF1 = (−t_zR2·sin δf2 − c)/sin δa1 and
+    t_zR1 = (−t_zF2·sin δa2 − c)/sin δf1."""
+    bl = _blank(**kw)
+    a2 = np.array([math.cos(bl.Sigma), math.sin(bl.Sigma)])  # wheel axis in the pinion's axial plane
+    p = np.array([math.cos(bl.delta1), math.sin(bl.delta1)])  # common pitch generator
+    n2 = (p - math.cos(bl.delta2) * a2) / math.sin(bl.delta2)  # wheel radial direction toward the generator
+
+    def pinion_axis_cut(apex_dist, cone_angle):
+        """Wheel cone line (apex −apex_dist·a2, angle from a2) moved by c toward the pinion axis; its z at r = 0."""
+        d = math.cos(cone_angle) * a2 + math.sin(cone_angle) * n2
+        normal = np.array([-d[1], d[0]])
+        normal = normal if normal[1] > 0 else -normal  # pointing away from the pinion axis
+        q = -apex_dist * a2 - bl.c * normal
+        return q[0] - q[1] * d[0] / d[1]
+
+    assert pinion_axis_cut(bl.tzR2, bl.delta_f2) == pytest.approx(-bl.tzF1, abs=1e-9)
+    assert pinion_axis_cut(bl.tzF2, bl.delta_a2) == pytest.approx(-bl.tzR1, abs=1e-9)
+    iso_f = (-bl.tzR2 * math.sin(bl.delta_f2) - bl.c) / math.sin(bl.delta_a1)
+    iso_r = (-bl.tzF2 * math.sin(bl.delta_a2) - bl.c) / math.sin(bl.delta_f1)
+    assert bl.tzF1 == pytest.approx(iso_f, abs=1e-9) and bl.tzR1 == pytest.approx(iso_r, abs=1e-9)
+    # that face cone lies c·(1 − cos θa1) inside the one through the mean addendum ham1 (perpendicular distance)
+    own = -(bl.Rm * math.sin(bl.theta_a1) - bl.ham1 * math.cos(bl.theta_a1)) / math.sin(bl.delta_a1)
+    gap = (bl.tzF1 - own) * math.sin(bl.delta_a1)
+    assert gap == pytest.approx(-bl.c * (1 - math.cos(bl.theta_a1)), abs=1e-9)
 
 
 @pytest.mark.parametrize("kw", [dict(), dict(taper="standard"), dict(taper="uniform"), dict(z1=11, z2=43, b=26.0),
@@ -114,12 +147,14 @@ def test_whole_depth_normal_to_root_equals_the_standard_closed_form(kw):
         iso = ((g("tzF") + g("txo")) / math.cos(g("delta_a")) * math.sin(g("theta_a") + g("theta_f"))
                - (g("tzR") - g("tzF")) * math.sin(g("delta_f")))
         assert g("ht") == pytest.approx(iso, abs=1e-9)
-        assert g("ht") < g("he")  # the perpendicular to the root is shorter than the depth along the heel back cone
+        assert g("ht") <= g("he") + 1e-12  # the perpendicular to the root is not longer than the heel depth
 
 
 def test_standard_taper_root_lines_pass_through_the_pitch_apex():
     bl = _blank(taper="standard")
-    assert bl.tzR1 == pytest.approx(0.0, abs=1e-12) and bl.tzR2 == pytest.approx(0.0, abs=1e-12)
+    assert bl.tzR2 == pytest.approx(0.0, abs=1e-12)
+    # the pinion's root cone of the standard sits c·(1 − cos θf1) (perpendicular) below its own dedendum line
+    assert bl.tzR1 * math.sin(bl.delta_f1) == pytest.approx(-bl.c * (1 - math.cos(bl.theta_f1)), abs=1e-12)
 
 
 def test_uniform_taper_has_constant_depth():

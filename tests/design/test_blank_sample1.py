@@ -145,9 +145,13 @@ def test_sample1_unpublished_figures_by_construction():
         assert 2 * root_i[1] == pytest.approx(g("dfi"), abs=1e-9)
         assert tip_e[0] == pytest.approx(g("txo"), abs=1e-9) and tip_i[0] == pytest.approx(g("txi"), abs=1e-9)
         assert (bl.Rm * axis_r)[0] == pytest.approx(g("tzm"), abs=1e-9) and g("tz") == 0.0
-        # whole depth perpendicular to the root cone: heel tip point to the root line
-        v = tip_e - mean_root
-        assert abs(root_dir[0] * v[1] - root_dir[1] * v[0]) == pytest.approx(g("ht"), abs=1e-9)
+        if k == 2:  # whole depth perpendicular to the root cone: heel tip point to the root line
+            v = tip_e - mean_root
+            assert abs(root_dir[0] * v[1] - root_dir[1] * v[0]) == pytest.approx(g("ht"), abs=1e-9)
+        else:  # the standard's h_t1: crown point of the pinion face cone (apex t_zF1) to its root cone (apex t_zR1)
+            crown = np.array([g("txo"), (g("txo") + g("tzF")) * math.tan(d + ta)])
+            v = crown - np.array([-g("tzR"), 0.0])
+            assert root_dir[0] * v[1] - root_dir[1] * v[0] == pytest.approx(g("ht"), abs=1e-9)
         # outer whole depth measured perpendicular to the pitch cone, the standard's h_e
         assert (tip_e - root_e) @ nrm == pytest.approx(g("he"), abs=1e-9)
     # t_zm2 of the independent program is printed "27.4..." (cut off in the report we could read): Rm*cos(delta2)

@@ -24,7 +24,7 @@ from .blank_checks import check_blank, top_land
 from .blank_input import TAPERS, BlankInput
 from .blank_result import BevelBlank
 from .blank_taper import taper_angles
-from .blank_dimensions import member_dimensions
+from .blank_dimensions import member_dimensions, pinion_apex_distances
 from .blank_thickness import (
     chordal_values,
     mean_normal_thickness,
@@ -96,7 +96,9 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
     point at mid-face of the wheel, Rm1 = Rm2 = Rm); Ri2 = Re2 − b2; a wider pinion is extended equally at toe and
     heel, Re1 = Rm + b1/2. mmn = dm2·cos βm / z2. Depths (data type II): hmw = k_d·mmn, c = k_c·hmw, hm = hmw + c,
     ham2 = c_ham·hmw, ham1 = hmw − ham2, hfm1 = ham2 + c, hfm2 = ham1 + c, x_hm1 = (ham1 − ham2)/(2·mmn). Heel and
-    toe dimensions, diameters and axial positions: :func:`~spiralbevel.design.blank_dimensions.member_dimensions`.
+    toe dimensions, diameters and axial positions: :func:`~spiralbevel.design.blank_dimensions.member_dimensions`;
+    the pinion's face and root apexes and h_t1 from the wheel's cones and the clearance, as the standard does
+    (:func:`~spiralbevel.design.blank_dimensions.pinion_apex_distances`).
     Thickness: x_smn = k_t/2; the outer normal backlash jen (or jet, jen = jet·cos βe2·cos αn) is taken half from
     each member (x_sm1, x_sm2); smn from :func:`~spiralbevel.design.blank_thickness.mean_normal_thickness`;
     jmn = jen·(Rm/Re2)·cos βm/cos βe2 is the mean normal backlash.
@@ -154,6 +156,10 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
         dims = member_dimensions(delta=delta, rm=rm, re=re, ri=ri, theta_a=q[f"theta_a{k}"],
                                  theta_f=q[f"theta_f{k}"], ham=q[f"ham{k}"], hfm=q[f"hfm{k}"])
         q.update({f"{name}{k}": v for name, v in dims.items()})
+    # the standard takes the pinion's face and root apexes (and so h_t1) from the wheel's cones plus the clearance
+    q.update({f"{name}1": v for name, v in pinion_apex_distances(
+        delta1=delta1, rm=rm, theta_a1=q["theta_a1"], theta_f1=q["theta_f1"], ham2=ham2, hfm2=hfm2, c=c,
+        txo1=q["txo1"]).items()})
 
     # backlash and thickness (ISO 23509: x_smn = k_t/2 for data type II, backlash half from each member)
     cbe2 = math.cos(q["beta_e2"])

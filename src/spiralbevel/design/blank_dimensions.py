@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["member_dimensions"]
+__all__ = ["member_dimensions", "pinion_apex_distances"]
 
 
 def member_dimensions(
@@ -57,7 +57,8 @@ def member_dimensions(
     * t_xo = t_zm + be·cos δ − hae·sin δ, t_xi = t_zm − bi·cos δ − hai·sin δ (tip points at heel and toe);
     * t_zF = t_z − (Rm·sin θa − ham·cos θa)/sin δa, t_zR = t_z + (Rm·sin θf − hfm·cos θf)/sin δf;
     * h_t: distance from the heel tip point (t_xo, dae/2) to the root cone line, measured along the root cone's
-      normal. The standard writes it as ((t_zF + t_xo)/cos δa)·sin(θa + θf) − (t_zR − t_zF)·sin δf; here it is the
+      normal. For the pinion the standard's t_zF1, t_zR1 and h_t1 come from the wheel instead
+      (:func:`pinion_apex_distances`, which :func:`~spiralbevel.design.blank.compute_blank` applies). The standard writes it as ((t_zF + t_xo)/cos δa)·sin(θa + θf) − (t_zR − t_zF)·sin δf; here it is the
       point-to-line distance to the line through the mean root point, which stays finite for δa = 90° and δf <= 0
       (same value; tests/design compare both). Since the heel tip lies h_e above the heel root point along the
       pitch-cone normal, h_t = h_e·cos θf.
@@ -85,3 +86,61 @@ def member_dimensions(
         "tzR": tz + (rm * math.sin(theta_f) - hfm * math.cos(theta_f)) / math.sin(df) if df > 0 else math.inf,
         "ht": ht,
     }
+
+
+def pinion_apex_distances(
+    *, delta1: float, rm: float, theta_a1: float, theta_f1: float, ham2: float, hfm2: float, c: float, txo1: float
+) -> dict[str, float]:
+    """Face and root apex of the pinion and its whole depth h_t1 as the standard defines them (a = 0).
+
+    Parameters
+    ----------
+    delta1 : float, rad
+        Pinion pitch angle.
+    rm : float, mm
+        Mean cone distance.
+    theta_a1, theta_f1 : float, rad
+        Pinion addendum and dedendum angles (= θf2 and θa2: uniform clearance).
+    ham2, hfm2 : float, mm
+        Mean addendum and dedendum of the wheel.
+    c : float, mm
+        Clearance.
+    txo1 : float, mm
+        Crossing point to the pinion's outer crown point.
+
+    Returns
+    -------
+    dict of str to float
+        ``tzF``, ``tzR`` (mm, apex beyond the crossing point; ``tzR`` is ``inf`` for a root angle <= 0) and ``ht``
+        (mm).
+
+    Notes
+    -----
+    ISO 23509 does not take the pinion's face and root apexes from its own mean addendum and dedendum but from the
+    wheel: the pinion face cone lies at the clearance c, measured perpendicular to the cones, from the wheel's root
+    cone, and the pinion root cone at c from the wheel's face cone. With a = 0 this is
+    t_zF1 = (−t_zR2·sin δf2 − c)/sin δa1 and t_zR1 = (−t_zF2·sin δa2 − c)/sin δf1. The mean addendum ham1 = hfm2 − c is
+    measured along the pitch-cone normal instead, so this face cone lies c·(1 − cos θa1) (0.005 mm in Annex F
+    Sample 1) inside the one through the outside diameter d_ae1 = d_e1 + 2·h_ae1·cos δ1, which the standard computes
+    from h_ae1. h_t1 is the distance of the crown point of this face cone (axial position t_xo1) from this root cone,
+    ((t_zF1 + t_xo1)/cos δa1)·sin(θa1 + θf1) − (t_zR1 − t_zF1)·sin δf1 in the standard's form. Here both lines are
+    built in the pinion's axial plane (z from the crossing point toward the body, r radial) from the wheel's mean
+    points, which stays finite for δf1 <= 0.
+    """
+    p = (math.cos(delta1), math.sin(delta1))  # pitch generator
+    n = (-math.sin(delta1), math.cos(delta1))  # pitch-cone normal, away from the pinion axis (toward the wheel)
+    da, df = delta1 + theta_a1, delta1 - theta_f1
+    u, nu = (math.cos(da), math.sin(da)), (-math.sin(da), math.cos(da))
+    v, nv = (math.cos(df), math.sin(df)), (-math.sin(df), math.cos(df))
+    # pinion face line: c below the wheel root line (through the wheel's mean root point, direction u)
+    pz = rm * p[0] + hfm2 * n[0] - c * nu[0]
+    pr = rm * p[1] + hfm2 * n[1] - c * nu[1]
+    # pinion root line: c below the wheel face line (through the wheel's mean tip point, direction v)
+    qz = rm * p[0] - ham2 * n[0] - c * nv[0]
+    qr = rm * p[1] - ham2 * n[1] - c * nv[1]
+    tzF = -(pz - pr * u[0] / u[1])
+    tzR = -(qz - qr * v[0] / v[1]) if v[1] > 0.0 else math.inf
+    t = (txo1 - pz) / u[0]  # crown point of the face line at the axial position t_xo1
+    fz, fr = pz + t * u[0], pr + t * u[1]
+    ht = (fz - qz) * nv[0] + (fr - qr) * nv[1]
+    return {"tzF": tzF, "tzR": tzR, "ht": ht}

@@ -76,7 +76,7 @@ QUANTITIES: tuple[tuple[str, str, str, str], ...] = (
     ("hai", "inner addendum", "length", "member"),
     ("hfi", "inner dedendum", "length", "member"),
     ("hi", "inner whole depth", "length", "member"),
-    ("ht", "whole depth perpendicular to the root cone, heel tip point", "length", "member"),
+    ("ht", "whole depth perpendicular to the root cone, at the outer crown point", "length", "member"),
     ("dae", "outside diameter", "length", "member"),
     ("dai", "inner outside diameter", "length", "member"),
     ("dfe", "outer root diameter", "length", "member"),
