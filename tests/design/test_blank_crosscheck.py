@@ -71,7 +71,7 @@ def test_rc0_bound_for_the_heel_is_sharp():
 
 
 # ---------------------------------------------------------------- cones in the axial plane
-@pytest.mark.parametrize("taper", ["duplex", "standard", "uniform"])
+@pytest.mark.parametrize("taper", ["duplex", "trl", "standard", "uniform"])
 @pytest.mark.parametrize("k", [1, 2])
 def test_face_and_root_cone_lines_by_plane_geometry(taper, k):
     """Heel and toe tip/root points built in the axial plane (z along the axis from the apex, r radial): the lines
@@ -334,3 +334,21 @@ def test_duplex_taper_keeps_the_completing_slot_consistent_with_the_pitch(kw):
             assert slope == pytest.approx(small_angle, abs=5e-6)
         else:
             assert abs(slope - small_angle) > 1e-3
+
+
+def test_tilted_root_line_caps_the_duplex_sum():
+    """TRL (ISO 23509 Annex C, modified slot width): Sample 1's duplex sum 8.6277° exceeds 1.3 times the standard sum
+    (1.3 * 5.6565° = 7.353°), so the root lines tilt about the mean point to 1.3·ΣθfS, split like the duplex sum;
+    with a small cutter the duplex sum is below the cap and TRL is the duplex blank."""
+    dup, trl = _blank(taper="duplex"), _blank(taper="trl")
+    assert dup.sum_theta_fC > 1.3 * dup.sum_theta_fS
+    assert trl.sum_theta_f == pytest.approx(1.3 * trl.sum_theta_fS, rel=1e-14)
+    assert trl.theta_f1 / trl.sum_theta_f == pytest.approx(dup.theta_f1 / dup.sum_theta_f, rel=1e-14)
+    for name in ("ham1", "hfm1", "ham2", "hfm2", "smn1", "smn2"):  # the mean point is where the root line pivots
+        assert getattr(trl, name) == getattr(dup, name)
+    assert trl.hfe2 < dup.hfe2 and trl.hfi2 > dup.hfi2
+    small = dict(rc0=60.0)  # duplex sum ~ (1 - Rm sin(beta)/rc0): a small cutter lowers it
+    dup, trl = _blank(taper="duplex", **small), _blank(taper="trl", **small)
+    assert dup.sum_theta_fC < 1.3 * dup.sum_theta_fS
+    a, b = dup.to_dict(), trl.to_dict()
+    assert {k for k in a if a[k] != b[k]} == {"taper"}

@@ -27,7 +27,7 @@ def designs(draw):
     b = draw(st.floats(0.12, 0.3)) * re
     beta = R(draw(st.floats(0.0, 40.0)))
     rc0 = draw(st.floats(0.7, 2.0)) * (re - b / 2)
-    taper = draw(st.sampled_from(["duplex", "standard", "uniform"]))
+    taper = draw(st.sampled_from(["duplex", "trl", "standard", "uniform"]))
     alpha = R(draw(st.floats(17.0, 25.0)))
     return dict(z1=z1, z2=z2, shaft_angle=sigma, met=met, b=b, beta_m=beta, rc0=rc0, taper=taper,
                 alpha_dD=alpha, alpha_dC=alpha, hand1=draw(st.sampled_from([Hand.LEFT, Hand.RIGHT])))

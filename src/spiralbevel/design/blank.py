@@ -149,8 +149,8 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
                    beta_m2=beta_m, **betas, alpha_nD=alpha_nD, alpha_nC=alpha_nC, alpha_lim=alpha_lim,
                    alpha_eD=alpha_eD, alpha_eC=alpha_eC, alpha_e=0.5 * (alpha_eD + alpha_eC), hmw=hmw, c=c,
                    hm=hmw + c, x_hm1=x_hm1, ham1=ham1, ham2=ham2, hfm1=hfm1, hfm2=hfm2, sum_theta_f=sum_used,
-                   sum_theta_fS=ta.sum_theta_fS, sum_theta_fC=ta.sum_theta_fC, theta_a1=ta.theta_a1,
-                   theta_a2=ta.theta_a2, theta_f1=ta.theta_f1, theta_f2=ta.theta_f2)
+                   sum_theta_fS=ta.sum_theta_fS, sum_theta_fC=ta.sum_theta_fC, sum_theta_fM=ta.sum_theta_fM,
+                   theta_a1=ta.theta_a1, theta_a2=ta.theta_a2, theta_f1=ta.theta_f1, theta_f2=ta.theta_f2)
 
     for k, delta, re, ri in ((1, delta1, re1, ri1), (2, delta2, re2, ri2)):
         dims = member_dimensions(delta=delta, rm=rm, re=re, ri=ri, theta_a=q[f"theta_a{k}"],

@@ -57,11 +57,12 @@ def member_dimensions(
     * t_xo = t_zm + be·cos δ − hae·sin δ, t_xi = t_zm − bi·cos δ − hai·sin δ (tip points at heel and toe);
     * t_zF = t_z − (Rm·sin θa − ham·cos θa)/sin δa, t_zR = t_z + (Rm·sin θf − hfm·cos θf)/sin δf;
     * h_t: distance from the heel tip point (t_xo, dae/2) to the root cone line, measured along the root cone's
-      normal. For the pinion the standard's t_zF1, t_zR1 and h_t1 come from the wheel instead
-      (:func:`pinion_apex_distances`, which :func:`~spiralbevel.design.blank.compute_blank` applies). The standard writes it as ((t_zF + t_xo)/cos δa)·sin(θa + θf) − (t_zR − t_zF)·sin δf; here it is the
+      normal. The standard writes it as ((t_zF + t_xo)/cos δa)·sin(θa + θf) − (t_zR − t_zF)·sin δf; here it is the
       point-to-line distance to the line through the mean root point, which stays finite for δa = 90° and δf <= 0
       (same value; tests/design compare both). Since the heel tip lies h_e above the heel root point along the
       pitch-cone normal, h_t = h_e·cos θf.
+    * For the pinion the standard's t_zF1, t_zR1 and h_t1 come from the wheel's cones instead
+      (:func:`pinion_apex_distances`, which :func:`~spiralbevel.design.blank.compute_blank` applies).
     """
     sd, cd = math.sin(delta), math.cos(delta)
     be, bi = re - rm, rm - ri

@@ -27,7 +27,7 @@ QUANTITIES: tuple[tuple[str, str, str, str], ...] = (
     ("c_ham", "mean addendum factor of the wheel", "ratio", "pair"),
     ("k_d", "depth factor", "ratio", "pair"),
     ("k_c", "clearance factor", "ratio", "pair"),
-    ("k_t", "thickness factor (thickness modification coefficient x_smn)", "ratio", "pair"),
+    ("k_t", "thickness factor (x_smn = k_t/2)", "ratio", "pair"),
     # --- pitch cone
     ("delta", "pitch angle", "angle", "member"),
     ("zp", "number of teeth of the crown gear", "ratio", "pair"),
@@ -65,6 +65,7 @@ QUANTITIES: tuple[tuple[str, str, str, str], ...] = (
     ("sum_theta_f", "dedendum angle sum used", "angle", "pair"),
     ("sum_theta_fS", "dedendum angle sum, standard taper", "angle", "pair"),
     ("sum_theta_fC", "dedendum angle sum, duplex taper (from rc0)", "angle", "pair"),
+    ("sum_theta_fM", "dedendum angle sum, tilted root line taper", "angle", "pair"),
     ("theta_a", "addendum angle", "angle", "member"),
     ("theta_f", "dedendum angle", "angle", "member"),
     ("delta_a", "face angle", "angle", "member"),

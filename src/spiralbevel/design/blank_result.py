@@ -106,6 +106,7 @@ class BevelBlank:
     sum_theta_f: float
     sum_theta_fS: float
     sum_theta_fC: float
+    sum_theta_fM: float
     theta_a1: float
     theta_a2: float
     theta_f1: float
