@@ -98,9 +98,9 @@ QUANTITIES: tuple[tuple[str, str, str, str], ...] = (
     ("dvn", "virtual normal reference diameter at the mean point", "length", "member"),
     ("smnc", "mean normal chordal thickness", "length", "member"),
     ("hamc", "mean chordal addendum", "length", "member"),
-    ("sai", "normal top land at the toe (estimate)", "length", "member"),
+    ("sai", "normal top land at the toe (completing face-milling slot)", "length", "member"),
     ("sam", "normal top land at the mean point", "length", "member"),
-    ("sae", "normal top land at the heel (estimate)", "length", "member"),
+    ("sae", "normal top land at the heel (completing face-milling slot)", "length", "member"),
     ("hlim", "undercut limit depth below the pitch line, mean section", "length", "member"),
 )
 
