@@ -31,7 +31,8 @@ class _Model(BaseModel):
 class DepthSpec(_Model):
     """Depthwise proportions and taper (ISO 23509 Method 0)."""
 
-    taper: Literal["given", "standard", "uniform", "duplex"] = _f("duplex", description="depthwise taper system")
+    taper: Literal["given", "standard", "uniform", "duplex", "trl"] = _f(
+        "duplex", description="depthwise taper system (trl: tilted root line)")
     mean_addendum_factor: Optional[float] = _f(None, ge=0.0, le=1.0, description="c_ham; default 0.21 + 0.29/u^2")
     depth_factor: float = _f(2.0, gt=0.0, le=4.0, description="k_d, mean working depth / mean normal module")
     clearance_factor: float = _f(0.125, ge=0.0, le=1.0, description="k_c")
