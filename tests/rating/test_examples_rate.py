@@ -48,3 +48,14 @@ def test_power_equals_torque():
     P = 300.0 * 1200.0 * math.pi / 30000.0  # kW of 300 N m at 1200 1/min
     alt = spec.model_copy(update={"rating": spec.rating.model_copy(update={"pinion_torque": None, "power": P})})
     assert rating_from_design(alt)["sigma_H"] == pytest.approx(rating_from_design(spec)["sigma_H"], rel=1e-12)
+
+
+def test_main_job_report_has_the_rating(tmp_path):
+    from spiralbevel.job import run_design
+
+    spec = load_design(bundled_designs()["iso23509_sample1"])
+    spec = spec.model_copy(update={"output": spec.output.model_copy(
+        update={"plots": False, "stl": False, "step": False, "toolpaths": False, "draft": False})})
+    summary = run_design(spec, tmp_path / "out", progress=False)
+    assert summary.report["rating"]["S_H"] == pytest.approx(rating_from_design(spec)["S_H"], rel=1e-12)
+    assert any(line.startswith("rating (ISO 10300 B1)") for line in summary.highlights)
