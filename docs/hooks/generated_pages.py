@@ -2,7 +2,8 @@
 
 * ``reference/design-file.md`` from the pydantic schema ``spiralbevel.io.design_schema.DesignFile``;
 * ``api/<group>.md`` from the curated public API ``spiralbevel.__all__`` (rendered by mkdocstrings from the
-  numpydoc docstrings).
+  numpydoc docstrings);
+* the output blocks of the tutorials (``<!-- tutorial-output: NAME.py -->``), by running each tutorial script.
 
 The navigation in ``mkdocs.yml`` names the generated pages; a page named there but not generated fails the strict
 build, and so does a public name that no group takes.
@@ -10,9 +11,16 @@ build, and so does a public name that no group takes.
 
 from __future__ import annotations
 
+import functools
 import inspect
+import os
+import re
+import subprocess
+import sys
+import tempfile
 import types
 import typing
+from pathlib import Path
 
 from mkdocs.structure.files import File
 
@@ -210,3 +218,32 @@ def on_config(config):
         if isinstance(item, dict) and "API reference" in item:
             item["API reference"] = entries
     return config
+
+
+# ------------------------------------------------------------------------------------------------- tutorial outputs
+
+_OUTPUT_MARK = re.compile(r"<!--\s*tutorial-output:\s*([\w.]+)\s*-->")
+
+
+@functools.lru_cache(maxsize=None)
+def tutorial_output(script: str, docs_dir: str) -> str:
+    """Run ``docs/tutorials/<script>`` in a fresh interpreter and return what it prints (the build fails if it fails).
+
+    Runs in a temporary directory, with a temporary FE cache, so that a build never reuses or pollutes user state.
+    """
+    path = Path(docs_dir) / "tutorials" / script
+    with tempfile.TemporaryDirectory() as tmp:
+        env = dict(os.environ, SPIRALBEVEL_CACHE=str(Path(tmp) / "cache"), MPLBACKEND="Agg")
+        args = [sys.executable, str(path), str(Path(tmp) / "out")]
+        if script == "misalignment.py":
+            args[-1] = "sequential"
+        proc = subprocess.run(args, cwd=tmp, env=env, capture_output=True, text=True, timeout=300)
+    if proc.returncode != 0:
+        raise RuntimeError(f"tutorial {script} failed:\n{proc.stderr[-3000:]}")
+    return proc.stdout
+
+
+def on_page_markdown(markdown, page, config, files):
+    def block(match):
+        return "```text\n" + tutorial_output(match.group(1), config["docs_dir"]).rstrip() + "\n```"
+    return _OUTPUT_MARK.sub(block, markdown)
