@@ -101,8 +101,9 @@ def main(out: Path, n_positions: int = 21, cache_dir=None) -> dict:
 
     loaded = loaded_tca(pinion_surface, gear_surface, kin, tca, 50e3, pinion_grids=pinion_tooth,   # torque N mm
                         gear_grids=gear_tooth, fe_options={"order": 1}, cache_dir=cache_dir)
-    print(f"loaded TE {np.min(loaded.te_loaded):.1f} to {np.max(loaded.te_loaded):.1f} arcsec, "
-          f"max contact pressure {np.nanmax(loaded.max_pressure):.0f} N/mm^2")
+    m = len(loaded.te_loaded) // 2   # the mean contact position
+    print(f"at the mean contact position: TE {loaded.te_unloaded[m]:.2f} arcsec unloaded, {loaded.te_loaded[m]:.2f} "
+          f"arcsec loaded, peak contact pressure {loaded.max_pressure[m]:.0f} N/mm^2")
     # --8<-- [end:ltca]
 
     # --8<-- [start:step]
