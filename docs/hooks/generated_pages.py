@@ -210,13 +210,15 @@ def on_files(files, config):
 
 
 def on_config(config):
-    """Expand the nav entry 'API reference' into one page per non-empty API group."""
+    """Expand the nav entry 'API reference' into one page per non-empty API group; anchor the snippet paths."""
     stems = {p.removeprefix("api/").removesuffix(".md") for p in api_pages()}
     entries = [{"Overview": "api/index.md"}] + [{title: f"api/{stem}.md"} for stem, title, *_ in API_GROUPS
                                                 if stem in stems]
     for item in config["nav"]:
         if isinstance(item, dict) and "API reference" in item:
             item["API reference"] = entries
+    # snippets resolve paths against the working directory: anchor them to docs/ so that a build from anywhere works
+    config["mdx_configs"].setdefault("pymdownx.snippets", {})["base_path"] = [config["docs_dir"]]
     return config
 
 
