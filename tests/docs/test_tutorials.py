@@ -40,6 +40,10 @@ def test_basic_data_blank_and_gear_settings(basic):
     assert gs.radial_setting == pytest.approx(115.078, abs=2e-3)
     assert math.degrees(gs.cradle_angle) == pytest.approx(math.degrees(math.asin(rc * math.cos(beta) / S)), abs=1e-4)
     assert math.degrees(gs.cradle_angle) == pytest.approx(59 + 20 / 60 + 7 / 3600, abs=2 / 3600)
+    # pitch roll of Eq. (G12), cos(theta_f2) / sin(delta2); Table 4 prints 1.06
+    theta_f2 = blank.delta2 - blank.delta_f2
+    assert gs.ratio_of_roll == pytest.approx(math.cos(theta_f2) / math.sin(blank.delta2), rel=1e-12)
+    assert round(gs.ratio_of_roll, 2) == 1.06
 
 
 def test_basic_data_synthesis_tca_ltca(basic):
