@@ -19,6 +19,7 @@ FIELD_PATHS = {
     "f_pt": "rating.pitch_deviation", "rho_a0": "rating.cutter_edge_radius", "sigma_Hlim": "rating.sigma_Hlim",
     "sigma_Flim": "rating.sigma_Flim", "nu40": "rating.oil_viscosity", "Rz_flank": "rating.flank_roughness",
     "Rz_root": "rating.root_roughness", "mounting": "rating.mounting", "contact_pattern": "rating.contact_pattern",
+    "profile_crowning": "rating.profile_crowning",
     "E": "rating.youngs_modulus", "nu": "rating.poisson_ratio", "density": "rating.density",
     "S_Hmin": "rating.S_Hmin", "S_Fmin": "rating.S_Fmin", "material": "rating.material",
     "load_cycles": "rating.load_cycles",
@@ -60,7 +61,8 @@ def rating_input_from_design(spec: DesignFile, blank):
             T1=T1, n1=r.pinion_speed, f_pt=f_pt, rho_a0=rho, sigma_Hlim=tuple(r.sigma_Hlim),
             sigma_Flim=tuple(r.sigma_Flim), nu40=r.oil_viscosity, Rz_flank=tuple(r.flank_roughness),
             Rz_root=tuple(r.root_roughness), K_A=r.application_factor, mounting=r.mounting,
-            contact_pattern=r.contact_pattern, E=r.youngs_modulus, nu=r.poisson_ratio, density=r.density,
+            contact_pattern=r.contact_pattern, profile_crowning=r.profile_crowning, E=r.youngs_modulus,
+            nu=r.poisson_ratio, density=r.density,
             S_Hmin=r.S_Hmin, S_Fmin=r.S_Fmin, material=r.material, load_cycles=r.load_cycles)
     except DesignError as err:
         raise DesignError([Problem(FIELD_PATHS.get(p.field, p.field), p.value, p.allowed, p.unit, p.reason)
