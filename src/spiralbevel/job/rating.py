@@ -11,7 +11,7 @@ from ..conventions import Member, Side
 from ..errors import DesignError, Problem
 from ..io.design_schema import DesignFile
 
-__all__ = ["rating_input_from_design", "rating_from_design", "rating_report"]
+__all__ = ["rating_input_from_design", "rating_from_design", "rating_report", "rating_ltca_report"]
 
 # RatingInput field -> design-file path
 FIELD_PATHS = {
@@ -87,3 +87,22 @@ def rating_report(spec: DesignFile, blank, report: dict, summary) -> None:
     report["rating"] = {"standard": "ISO 10300:2014 Method B1", **res.to_dict()}
     summary.highlights.append(f"rating (ISO 10300 B1): S_H = {res['S_H']:.3f}, S_F1 = {res['S_F1']:.3f}, "
                               f"S_F2 = {res['S_F2']:.3f}")
+
+
+def rating_ltca_report(spec: DesignFile, blank, report: dict, summary, ltca_result) -> None:
+    """Add ``rating.ltca_comparison`` (LTCA peak pressure against sigma_H0, sigma_H at the LTCA torque) when the
+    design has ``[rating]`` and the LTCA of the drive side ran (hook of the face-milled run after its LTCA)."""
+    if spec.rating is None or ltca_result is None or "rating" not in report:
+        return
+    if spec.ltca.side != "drive":
+        report["rating"]["ltca_comparison"] = {"status": "not compared: the rating is of the drive side, the LTCA "
+                                                         "of the coast side"}
+        return
+    from ..rating import compare_with_ltca
+
+    cmp = compare_with_ltca(blank, rating_input_from_design(spec, blank), ltca_result)
+    report["rating"]["ltca_comparison"] = {"status": "ok", **cmp, "units": {
+        "T1_ltca": "N m", "p_max_ltca": "N/mm^2", "phi1_at_p_max": "deg", "pairs_at_p_max": "-",
+        "sigma_H0": "N/mm^2", "sigma_H": "N/mm^2", "p_max/sigma_H0": "-", "p_max/sigma_H": "-"}}
+    summary.highlights.append(f"LTCA peak pressure {cmp['p_max_ltca']:.0f} N/mm^2 = {cmp['p_max/sigma_H0']:.2f} "
+                              f"sigma_H0, {cmp['p_max/sigma_H']:.2f} sigma_H (ISO 10300 B1 at the LTCA torque)")
