@@ -96,9 +96,30 @@ class Locator:
         _, idx = self._tree.query(tgt)
         return self._par[idx].reshape(np.shape(axial) + (2,))
 
-    def solve(self, fun, x0, what):
+    def starts(self, axial, radius, k):
+        """The k-th nearest table entry (k = 0: nearest) to each target (axial, radius)."""
+        tgt = np.stack([axial, radius], -1).reshape(-1, 2)
+        _, idx = self._tree.query(tgt, k=k + 1)
+        idx = np.minimum(idx[:, k], len(self._par) - 1)
+        return self._par[idx].reshape(np.shape(axial) + (2,))
+
+    def solve(self, fun, x0, what, retry=None):
+        """Batched Newton from ``x0``; ``retry(k)`` gives the k-th alternative starts for points that do not converge
+        (the coarse table's nearest entry can sit on the degenerate fillet tip, where the map (u, psi_c) -> point
+        folds)."""
         res = solve_batched(fun, x0, tol=TOL.newton_abs * 10, max_iter=TOL.max_iter,
                             max_step=np.array([2.0, 0.05]))
+        for k in range(1, 6 if retry is not None else 1):
+            bad = ~res.converged
+            if not np.any(bad):
+                break
+            x1 = np.where(bad[..., None], retry(k), res.x)
+            again = solve_batched(fun, x1, tol=TOL.newton_abs * 10, max_iter=TOL.max_iter,
+                                  max_step=np.array([2.0, 0.05]))
+            keep = bad & again.converged
+            res.x = np.where(keep[..., None], again.x, res.x)
+            res.residual = np.where(keep, again.residual, res.residual)
+            res.converged = res.converged | keep
         if not np.all(res.converged):
             bad = ~res.converged
             raise GeometryError.single(
@@ -119,7 +140,8 @@ class Locator:
             ax, rad, _ = gen.axial_radial(x[..., 0], x[..., 1])
             return np.stack([rad - radius, ax - axial], -1)
 
-        return self.solve(fun, self.start(axial, radius) if x0 is None else x0, "locate(axial, radius)")
+        return self.solve(fun, self.start(axial, radius) if x0 is None else x0, "locate(axial, radius)",
+                          retry=lambda k: self.starts(axial, radius, k))
 
     def at_R_h(self, R, h, x0=None):
         ax, rad = self.outline.axial_radius(np.asarray(R, float), np.asarray(h, float))

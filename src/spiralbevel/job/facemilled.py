@@ -26,31 +26,15 @@ class FlankSetup:
     settings: object
     flank: object
     source: str
+    fit: object = None
 
 
 def _default_cutter(spec, blank, member, side):
-    from ..machine.cutter import Blade, HeadCutter
+    """The derived cutter of a flank (``machine.default_cutter``) with the design file's overrides."""
+    from ..machine.default_cutter import default_cutter
 
-    fm, g = spec.face_milling, spec.gear_set
-    i = member.index
-    drive = (member is Member.PINION and side is Side.CONCAVE) or (member is Member.GEAR and side is Side.CONVEX)
-    alpha = math.radians(g.normal_pressure_angle if drive or g.coast_pressure_angle is None
-                         else g.coast_pressure_angle)
-    W = fm.point_width
-    if W is None:
-        # slot width at the root in the mean normal section: space width on the pitch line minus the flank run-out
-        space = math.pi * blank.mmn - getattr(blank, f"smn{i}")
-        W = space - 2.0 * getattr(blank, f"hfm{i}") * math.tan(alpha)
-        if W <= 0.2 * blank.mmn:
-            raise GeometryError.single(
-                f"face_milling.point_width", "derived", f"> {0.2 * blank.mmn:.3f}", "mm",
-                f"the {member.value} tooth space is too narrow at the root for a derived cutter "
-                f"(slot width {W:.3f} mm): give point_width explicitly or reduce the dedendum")
-    rho = fm.edge_radius if fm.edge_radius is not None else 0.45 * W
-    blade = Blade.INNER if side is Side.CONVEX else Blade.OUTER
-    s = blade.sign
-    return HeadCutter(point_radius=blank.rc0 + s * W / 2.0, blade_angle=alpha, point_width=W, edge_radius=rho,
-                      blade=blade)
+    fm = spec.face_milling
+    return default_cutter(blank, member, side, point_width=fm.point_width, edge_radius=fm.edge_radius)
 
 
 def _given_cutter(cs, side):
@@ -170,25 +154,28 @@ def cmc_paper_model(spec, blank, setups, name):
 
 def _basic_setups(spec, blank):
     from ..generation.flank import generate_flank
-    from ..machine.settings import MachineSettings
+    from ..generation.basic_settings_solve import solve_basic_settings
 
     out = {}
     for m in MEMBERS:
         for s in SIDES:
             key = f"{m.value}_{s.value}"
             fs = getattr(spec.face_milling, key)
+            fit = None
             try:
                 cutter = _given_cutter(fs.cutter, s) if fs.cutter is not None else _default_cutter(spec, blank, m, s)
                 if fs.machine is not None:
                     settings, source = _given_settings(fs.machine), "given"
+                    flank = generate_flank(cutter, settings, blank, m, s)
+                    flank.mean_point()  # generation is lazy: check here that the settings generate this flank at all
                 else:
-                    settings = MachineSettings.from_blank(blank, m, s, cutter, roll=spec.face_milling.roll)
-                    source = "from blank (crown-gear generation)"
-                flank = generate_flank(cutter, settings, blank, m, s)
-                flank.mean_point()  # generation is lazy: check here that the settings generate this flank at all
+                    cutter, settings, flank, fit = solve_basic_settings(
+                        blank, m, s, cutter, solve_blade_angle=fs.cutter is None, roll=spec.face_milling.roll)
+                    source = ("basic settings solved for the design pressure and spiral angles, root on the root "
+                              "cone" + ("" if fs.cutter is None else " (given cutter: spiral angle only)"))
             except DesignError as err:
                 raise _in_design_file(err, key, fs) from err
-            out[(m, s)] = FlankSetup(m, s, cutter, settings, flank, source)
+            out[(m, s)] = FlankSetup(m, s, cutter, settings, flank, source, fit)
     return out
 
 
@@ -246,8 +233,11 @@ def rotate_grid(points, normals, angle):
     return points @ R.T, normals @ R.T
 
 
-def flank_report(setups):
-    """``flanks`` and ``machine_settings`` report sections (degrees, mm, 1/mm)."""
+def flank_report(setups, blank=None):
+    """``flanks`` and ``machine_settings`` report sections (degrees, mm, 1/mm); with the blank, each flank's design
+    against achieved mean-point angles and root position (``design_vs_achieved``)."""
+    from ..generation.basic_settings_solve import flank_fit
+
     flanks, machines = {}, {}
     for (m, s), st in setups.items():
         mp = st.flank.mean_point()
@@ -270,5 +260,8 @@ def flank_report(setups):
                        "profile_radius_mm": c.profile_radius if math.isfinite(c.profile_radius) else None},
             "summary": [list(r) for r in st.settings.summary_rows(c, m, s)],
         }
+        fit = st.fit if st.fit is not None else (flank_fit(blank, st.flank) if blank is not None else None)
+        if fit is not None:
+            flanks[m.value][s.value]["design_vs_achieved"] = fit.to_dict()
     units = {"settings": "mm; cradle_angle and machine_root_angle in deg; ratio_of_roll dimensionless"}
     return flanks, dict(machines, units=units)
