@@ -64,10 +64,39 @@ def setup_flanks(spec, blank, with_synthesis: bool = False):
     """
     out = _basic_setups(spec, blank)
     synth = {}
-    if spec.synthesis is not None:
-        new, synth = synthesize_sides(spec, blank, out)
+    sy = effective_synthesis(spec, blank)
+    if sy is not None:
+        new, synth = synthesize_sides(spec, blank, out, sy)
         out.update(new)
     return (out, synth) if with_synthesis else out
+
+
+#: defaults of the developed pair when a face-milled design has no ``[synthesis]`` section (docs/conventions.md,
+#: "Developed pair by default"): both sides, contact path 0 deg from the gear's profile direction (across the face),
+#: contact-ellipse semi-major axis 0.15 b (a bearing about a third of the face width long at the 0.00635 mm approach),
+#: parabolic TE of 8 arcsec over one mesh cycle
+DEFAULT_SYNTHESIS = dict(sides=("drive", "coast"), path_direction=0.0, semi_major_axis_fraction=0.15,
+                         te_magnitude=8.0)
+
+
+def effective_synthesis(spec, blank):
+    """The ``[synthesis]`` section, or the defaults when a face-milled design without given pinion settings has none.
+
+    Returns ``None`` when nothing is synthesized (a pinion side with given machine settings keeps them).
+    """
+    from ..io.design_schema import SynthesisSpec
+
+    if spec.synthesis is not None:
+        return spec.synthesis
+    fmspec = spec.face_milling
+    sides = tuple(name for name in DEFAULT_SYNTHESIS["sides"]
+                  if getattr(fmspec, f"pinion_{PAIR_SIDES[name][0].value}").machine is None)
+    if not sides:
+        return None
+    d = DEFAULT_SYNTHESIS
+    return SynthesisSpec(sides=sides, path_direction=d["path_direction"],
+                         semi_major_axis=d["semi_major_axis_fraction"] * float(blank.b2),
+                         te_magnitude=d["te_magnitude"])
 
 
 #: design-file names of the pair sides: (pinion side, gear side)
@@ -75,8 +104,8 @@ PAIR_SIDES = {"drive": (Side.CONCAVE, Side.CONVEX), "coast": (Side.CONVEX, Side.
 _FREE = {"offset": "FREE_OFFSET", "modified-roll": "FREE_MODIFIED_ROLL", "fixed-blade": "FREE_FIXED_BLADE"}
 
 
-def synthesize_sides(spec, blank, setups):
-    """Local synthesis of the pinion flank of each side listed in ``spec.synthesis``.
+def synthesize_sides(spec, blank, setups, sy=None):
+    """Local synthesis of the pinion flank of each side listed in ``sy`` (default ``spec.synthesis``).
 
     Returns ({(PINION, side): FlankSetup}, {side name: SynthesisResult}).
     """
@@ -86,7 +115,7 @@ def synthesize_sides(spec, blank, setups):
     from .problems import restated
 
     try:
-        return _synthesize_sides(spec, blank, setups, syn)
+        return _synthesize_sides(spec.synthesis if sy is None else sy, blank, setups, syn)
     except DesignError as err:
         raise restated(err, SYNTHESIS_PATHS, default="synthesis") from err
 
@@ -98,8 +127,7 @@ SYNTHESIS_PATHS = {
 }
 
 
-def _synthesize_sides(spec, blank, setups, syn):
-    sy = spec.synthesis
+def _synthesize_sides(sy, blank, setups, syn):
     new, results = {}, {}
     for name in sy.sides:
         s1, s2 = PAIR_SIDES[name]
@@ -118,10 +146,13 @@ def _synthesize_sides(spec, blank, setups, syn):
                 f"local synthesis + multi-point control ({name} side)")
             results[name] = design
             continue
+        pin = setups[(Member.PINION, s1)]
+        hint = pin.source.startswith("basic settings solved")   # start from the pinion's solved basic settings
         res = syn.synthesize_pinion(
             gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
             semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
-            approach=sy.approach, free=getattr(syn, _FREE[sy.free]))
+            approach=sy.approach, free=getattr(syn, _FREE[sy.free]),
+            pinion_cutter_hint=pin.cutter if hint else None, pinion_settings_hint=pin.settings if hint else None)
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
                                               res.pinion_flank, f"local synthesis ({name} side)")
         results[name] = res
