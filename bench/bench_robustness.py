@@ -1,7 +1,7 @@
 """Robustness of the face-milled design path: random plausible designs from basic data to a developed pair.
 
 Samples designs (pinion 9-40 teeth, ratio 1-6, shaft angle 60-120 deg, mean spiral angle 0-45 deg (> 0 in the design
-file: 1-45), outer module 1-12 mm, face width 0.15-0.3 Re, both hands, pressure angle 20 deg, cutter radius 0.8-1.1 R_m), and runs for each what
+file: 1-45), outer module 1-12 mm, face width 0.15-0.3 Re, both hands, gear pitch angle below 85 deg, pressure angle 20 deg, cutter radius 0.8-1.1 R_m), and runs for each what
 ``spiralbevel run`` does up to the TCA: the ISO blank, default cutters and solved basic settings for the four flanks,
 local synthesis of both pinion sides (the developed pair by default) and the TCA of both sides. A design counts as
 developed when every step succeeds and both TCA sides have contact at every position. Prints the fraction developed,
@@ -45,12 +45,15 @@ kind = "face-milled"
 
 def sample(rng):
     """One plausible design as design-file text and a short label."""
-    z1 = int(rng.integers(9, 41))
-    z2 = int(round(z1 * rng.uniform(1.0, 6.0)))
-    sigma = rng.uniform(60.0, 120.0)
+    while True:  # an external bevel pair: the gear's pitch angle below 85 deg (else a crown or internal gear)
+        z1 = int(rng.integers(9, 41))
+        z2 = int(round(z1 * rng.uniform(1.0, 6.0)))
+        sigma = rng.uniform(60.0, 120.0)
+        s = math.radians(sigma)
+        if math.degrees(math.atan2(math.sin(s), z1 / z2 + math.cos(s))) < 85.0:
+            break
     beta = rng.uniform(1.0, 45.0)
     m = rng.uniform(1.0, 12.0)
-    s = math.radians(sigma)
     delta2 = math.atan2(math.sin(s), z1 / z2 + math.cos(s))
     Re = m * z2 / (2.0 * math.sin(delta2))
     b = rng.uniform(0.15, 0.3) * Re

@@ -118,3 +118,10 @@ def test_default_cutter_fits_the_slot():
             assert c.edge_radius * (1 - math.sin(a)) / math.cos(a) <= 0.5 * W + 1e-12
             assert c.edge_radius * (1 - math.sin(a)) <= blank.c + 1e-12
             assert c.edge_radius == pytest.approx(rho)
+
+
+def test_mean_point_generated_at_zero_cradle_angle(solved):
+    """Gauge of the solved settings: the mean point is generated at psi_c = 0 (the start of local synthesis)."""
+    blank, out = solved
+    for (m, s), (cutter, settings, flank, fit) in out.items():
+        assert abs(flank.mean_point().psi_c) < 1e-8

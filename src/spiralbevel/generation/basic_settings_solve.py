@@ -131,31 +131,59 @@ def solve_basic_settings(blank, member, side, cutter: HeadCutter, solve_blade_an
 
     x = np.array([cutter.blade_angle, beta_d] if solve_blade_angle else [beta_d], float)
     h = 1e-6
+    r, f = residual(x)
     for it in range(1, _MAX_ITER + 1):
-        r, f = residual(x)
         if np.max(np.abs(r)) < ANGLE_TOL:
             break
         J = np.empty((x.size, x.size))
         for k in range(x.size):
             xk = x.copy()
-            xk[k] += h
-            J[:, k] = (residual(xk)[0] - r) / h
+            try:
+                xk[k] += h
+                J[:, k] = (residual(xk)[0] - r) / h
+            except GeometryError:
+                xk[k] -= 2 * h
+                J[:, k] = (r - residual(xk)[0]) / h
         try:
             step = np.linalg.solve(J, -r)
         except np.linalg.LinAlgError as err:
             raise ConvergenceError(f"{member.value} {side.value}: basic settings: singular Jacobian", it,
                                    float(np.max(np.abs(r))), x) from err
         step *= min(1.0, 0.1 / max(np.max(np.abs(step)), 1e-300))  # at most 0.1 rad (5.7 deg) per iteration
-        x = x + step
-        if solve_blade_angle and not (0.01 < x[0] < 0.5 * math.pi - 0.01):
+        # backtracking: halve the step while the cutter misses the blank at the trial point or the residual grows
+        for _ in range(8):
+            trial = x + step
+            if solve_blade_angle and not (0.01 < trial[0] < 0.5 * math.pi - 0.01):
+                step *= 0.5
+                continue
+            try:
+                r1, f1 = residual(trial)
+            except GeometryError:
+                step *= 0.5
+                continue
+            if np.max(np.abs(r1)) < np.max(np.abs(r)) or np.max(np.abs(step)) < 1e-9:
+                break
+            step *= 0.5
+        else:
             raise GeometryError.single(
-                "gear_set.normal_pressure_angle", math.degrees(alpha_d), "a pressure angle a blade can generate",
-                "deg", f"the {member.value} {side.value} blade angle left 0..90 deg while solving the basic settings")
+                f"gear_set (cutter_radius {float(blank.rc0):.1f} mm, mean_spiral_angle, normal_pressure_angle)", "-",
+                "a design whose flank a face-milling cutter can generate", "-",
+                f"the {member.value} {side.value} basic settings cannot reach the design pressure and spiral angles "
+                f"at the mean point (residual {math.degrees(float(np.max(np.abs(r)))):.3g} deg): try a cutter radius "
+                f"nearer the mean cone distance Rm = {float(blank.Rm):.1f} mm")
+        x, r, f = trial, r1, f1
     else:
         raise ConvergenceError(
             f"{member.value} {side.value}: basic settings did not reach the design pressure and spiral angles at the "
             f"mean point in {_MAX_ITER} iterations", _MAX_ITER, float(np.max(np.abs(r))), x)
     c, s, f = build(x)
+    # gauge: turn the cutter centre by the cradle angle at which the mean point is generated (the cutter centre sits
+    # at angle pi - q + psi_c), so that the mean point is generated at psi_c = 0 as by ``MachineSettings.from_blank``;
+    # the flank only turns about the member axis, every mean-point quantity is unchanged
+    psi = f.mean_point().psi_c
+    if abs(psi) > 1e-12 and not s.modified_roll and not s.blank_offset_poly:
+        s = s.replace(cradle_angle=s.cradle_angle - psi)
+        f = generate_flank(c, s, blank, member, side)
     return c, s, f, flank_fit(blank, f, it)
 
 

@@ -9,7 +9,7 @@ import numpy as np
 
 from .._core.rotations import rot_z
 from ..conventions import Member, Side
-from ..errors import DesignError, GeometryError
+from ..errors import ConvergenceError, DesignError, GeometryError
 from ..meshing.tca_result import ARCSEC
 
 MEMBERS = (Member.PINION, Member.GEAR)
@@ -72,11 +72,23 @@ def setup_flanks(spec, blank, with_synthesis: bool = False):
 
 
 #: defaults of the developed pair when a face-milled design has no ``[synthesis]`` section (docs/conventions.md,
-#: "Developed pair by default"): both sides, contact path 0 deg from the gear's profile direction (across the face),
-#: contact-ellipse semi-major axis 0.15 b (a bearing about a third of the face width long at the 0.00635 mm approach),
-#: parabolic TE of 8 arcsec over one mesh cycle
+#: "Developed pair by default"): both sides, contact path 0 deg from the gear's profile direction, contact-ellipse
+#: semi-major axis 0.15 b (a bearing about a third of the face width long) at an elastic approach of b/5827 (the
+#: Gleason 0.00635 mm at seed 001's 37 mm face width, scaled with the size so that geometrically similar designs get
+#: similar relative curvatures), parabolic TE of 8 arcsec over half a mesh cycle on each side of the mean contact
 DEFAULT_SYNTHESIS = dict(sides=("drive", "coast"), path_direction=0.0, semi_major_axis_fraction=0.15,
-                         te_magnitude=8.0)
+                         approach_fraction=0.00635 / 37.0, te_magnitude=8.0)
+
+
+def _default_spec_class():
+    from ..io.design_schema import SynthesisSpec
+
+    class DefaultSynthesis(SynthesisSpec):
+        """The default synthesis: may fall back to the other sets of solved settings."""
+
+        _default: bool = True
+
+    return DefaultSynthesis
 
 
 def effective_synthesis(spec, blank):
@@ -94,9 +106,9 @@ def effective_synthesis(spec, blank):
     if not sides:
         return None
     d = DEFAULT_SYNTHESIS
-    return SynthesisSpec(sides=sides, path_direction=d["path_direction"],
+    return _default_spec_class()(sides=sides, path_direction=d["path_direction"],
                          semi_major_axis=d["semi_major_axis_fraction"] * float(blank.b2),
-                         te_magnitude=d["te_magnitude"])
+                         approach=d["approach_fraction"] * float(blank.b2), te_magnitude=d["te_magnitude"])
 
 
 #: design-file names of the pair sides: (pinion side, gear side)
@@ -148,13 +160,22 @@ def _synthesize_sides(sy, blank, setups, syn):
             continue
         pin = setups[(Member.PINION, s1)]
         hint = pin.source.startswith("basic settings solved")   # start from the pinion's solved basic settings
-        res = syn.synthesize_pinion(
-            gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
-            semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
-            approach=sy.approach, free=getattr(syn, _FREE[sy.free]),
-            pinion_cutter_hint=pin.cutter if hint else None, pinion_settings_hint=pin.settings if hint else None)
+        # the design file's set of solved settings first; for the default synthesis the other sets after it
+        names = [sy.free] + ([f for f in _FREE if f != sy.free] if getattr(sy, "_default", False) else [])
+        for k, free in enumerate(names):
+            try:
+                res = syn.synthesize_pinion(
+                    gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
+                    semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
+                    approach=sy.approach, free=getattr(syn, _FREE[free]),
+                    pinion_cutter_hint=pin.cutter if hint else None,
+                    pinion_settings_hint=pin.settings if hint else None)
+                break
+            except ConvergenceError:
+                if k == len(names) - 1:
+                    raise
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
-                                              res.pinion_flank, f"local synthesis ({name} side)")
+                                              res.pinion_flank, f"local synthesis ({name} side, free = {free})")
         results[name] = res
     return new, results
 
