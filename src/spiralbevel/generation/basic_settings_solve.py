@@ -46,7 +46,8 @@ class FlankFit:
     """Design against achieved values of one generated flank (angles rad, lengths mm).
 
     ``root_deviation`` holds the height of the generated root line above the blank's root cone at the toe, the mean
-    cone distance and the heel (negative: below the root cone, i.e. too deep).
+    cone distance and the heel (negative: below the root cone, i.e. too deep; ``None`` where no root point is
+    enveloped, see :func:`root_deviation`).
     """
 
     pressure_angle_design: float
@@ -62,19 +63,33 @@ class FlankFit:
                 "pressure_angle_deg": math.degrees(self.pressure_angle),
                 "spiral_angle_design_deg": math.degrees(self.spiral_angle_design),
                 "spiral_angle_deg": math.degrees(self.spiral_angle),
-                "root_deviation_toe_mean_heel_mm": [float(v) for v in self.root_deviation],
+                "root_deviation_toe_mean_heel_mm": [None if v is None else float(v) for v in self.root_deviation],
                 "iterations": self.iterations}
 
 
-def root_deviation(flank) -> np.ndarray:
-    """Height (mm) of the generated root line (cutter tip) above the blank's root cone at toe, mean and heel, (3,)."""
+def root_deviation(flank) -> tuple:
+    """Height (mm) of the generated root line above the blank's root cone at toe, mean and heel.
+
+    A station where the blade tip generates no enveloping root point (the root there is the trace of the tip circle,
+    not an envelope: the grazing contact of the tip plane with the root cone has no solution) is ``None``.
+    """
     ol = flank.outline
-    R = np.array([ol.Ri, ol.Rm, ol.Re])
-    x = flank._locator.at_R_u(R, np.full(3, flank.generator.cp["u_min"]))
-    p = flank.generator.points(x[:, 0], x[:, 1])
-    Rx, h = ol.Rh(p[:, 2], np.hypot(p[:, 0], p[:, 1]))
-    # the root line is sampled at R: h on the root cone at the same R
-    return h - ol.h_root(Rx)
+    # the blade tip generates the root by a grazing contact (the tip plane touches the root cone), where the contact
+    # solve is singular (the generated point runs off like a square root of the cradle angle); sample the fillet at
+    # the arc angle 0.02 rad from the tip instead: it lies rho_h (1 - cos 0.02) = 2e-4 rho_h above the tip plane,
+    # below 1e-3 mm for any edge radius up to 5 mm
+    u = flank.generator.cp["u_min"] + 0.02 * flank.cutter.edge_radius
+    out = []
+    for R in (ol.Ri, ol.Rm, ol.Re):
+        try:
+            x = flank._locator.at_R_u(np.array([R]), np.array([u]))
+        except GeometryError:
+            out.append(None)
+            continue
+        p = flank.generator.points(x[:, 0], x[:, 1])
+        Rx, h = ol.Rh(p[:, 2], np.hypot(p[:, 0], p[:, 1]))
+        out.append(float(h[0] - ol.h_root(Rx[0])))
+    return tuple(out)
 
 
 def solve_basic_settings(blank, member, side, cutter: HeadCutter, solve_blade_angle: bool = True,
@@ -169,8 +184,9 @@ def solve_basic_settings(blank, member, side, cutter: HeadCutter, solve_blade_an
                 f"gear_set (cutter_radius {float(blank.rc0):.1f} mm, mean_spiral_angle, normal_pressure_angle)", "-",
                 "a design whose flank a face-milling cutter can generate", "-",
                 f"the {member.value} {side.value} basic settings cannot reach the design pressure and spiral angles "
-                f"at the mean point (residual {math.degrees(float(np.max(np.abs(r)))):.3g} deg): try a cutter radius "
-                f"nearer the mean cone distance Rm = {float(blank.Rm):.1f} mm")
+                f"at the mean point (residual {math.degrees(float(np.max(np.abs(r)))):.3g} deg; the cutter stops "
+                f"generating the mean point): change gear_set.cutter_radius (now {float(blank.rc0):.1f} mm, mean cone "
+                f"distance Rm = {float(blank.Rm):.1f} mm) or gear_set.mean_spiral_angle")
         x, r, f = trial, r1, f1
     else:
         raise ConvergenceError(
@@ -192,6 +208,6 @@ def flank_fit(blank, flank, iterations: int = 0) -> FlankFit:
     i = flank.member.index
     mp = flank.mean_point()
     return FlankFit(design_pressure_angle(blank, flank.member, flank.side), mp.pressure_angle,
-                    abs(float(getattr(blank, f"beta_m{i}"))), mp.spiral_angle, tuple(root_deviation(flank)),
+                    abs(float(getattr(blank, f"beta_m{i}"))), mp.spiral_angle, root_deviation(flank),
                     iterations)
 
