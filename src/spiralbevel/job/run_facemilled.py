@@ -18,7 +18,7 @@ def run_facemilled(spec, blank, out, steps, report, summary):
         cmc = {name: d for name, d in synth.items() if hasattr(d, "multipoint")}
     with steps.step("generated flanks and curvatures"):
         grids = {k: st.flank.grid(n_face, n_profile) for k, st in setups.items()}
-        flanks, machines = fm.flank_report(setups)
+        flanks, machines = fm.flank_report(setups, blank)
         report["flanks"] = flanks
         report["machine_settings"] = machines
     with steps.step("tooth assembly"):
