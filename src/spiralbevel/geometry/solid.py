@@ -237,6 +237,29 @@ def _wrap(a):
     return (np.asarray(a) + np.pi) % (2.0 * np.pi) - np.pi
 
 
+def _rotated_teeth(builder, br: _Bridger, pa, pb, na, nb, rots) -> list:
+    """Add z teeth to ``builder``: one tooth (flanks, top land, toe and heel faces) is built once and every tooth is
+    that mesh turned by its rotation ``rots[k]`` (the teeth share no edge, so each keeps the template's orientation).
+    The template's bridging rungs enter ``br``'s cache under each tooth's vertex numbers, so that the root lands and
+    end faces built afterwards reuse them. Returns the teeth's flank indices and coordinates (as ``_ToothIdx``)."""
+    tb = MeshBuilder()
+    tbr = _Bridger(tb, br.h)
+    t0 = _ToothIdx(tb, pa, pb)
+    _add_tooth(tb, tbr, t0, na, nb, root=False)
+    template = tb.mesh()
+    teeth = []
+    for R in rots:
+        base = builder.n_vertices
+        builder.add_vertices(apply(R, template.vertices))
+        builder.add_patch(template.faces + base, fixed=True, name="tooth")
+        for (u, v), r in tbr._cache.items():
+            br._cache[(u + base, v + base)] = r + base
+        t = _ToothIdx.__new__(_ToothIdx)
+        t.a, t.b, t.pa, t.pb = t0.a + base, t0.b + base, apply(R, pa), apply(R, pb)
+        teeth.append(t)
+    return teeth
+
+
 def _gear(convex, concave, z, body: GearBody | None, teeth: bool) -> TriangleMesh:
     if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or z < 3:
         raise DesignError.single("z", z, "integer >= 3", "-")
@@ -274,13 +297,13 @@ def _gear(convex, concave, z, body: GearBody | None, teeth: bool) -> TriangleMes
     builder = MeshBuilder()
     br = _Bridger(builder, _spacing(pa, pb))
     rots = rot_z(np.arange(z) * pitch)
-    tooth = [_ToothIdx(builder, pa, pb, R) for R in rots]
     known = na is not None and nb is not None
     try:
-        for R, t in zip(rots, tooth):
-            if teeth:
-                _add_tooth(builder, br, t, *((apply(R, na), apply(R, nb)) if known else (None, None)), root=False)
-            else:
+        if teeth:
+            tooth = _rotated_teeth(builder, br, pa, pb, na, nb, rots)
+        else:
+            tooth = [_ToothIdx(builder, pa, pb, R) for R in rots]
+            for t in tooth:
                 builder.add_patch(br.strip(t.a[:, 0], t.b[:, 0], t.pa[:, 0], t.pb[:, 0]), name="root strip")
         # (indices, coordinates) of the leading and trailing root edges of every tooth
         lead = [(t.b[:, 0], t.pb[:, 0]) if b_leads else (t.a[:, 0], t.pa[:, 0]) for t in tooth]
