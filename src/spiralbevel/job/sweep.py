@@ -85,10 +85,13 @@ def _batches(points, n_workers):
 @functools.lru_cache(maxsize=1)
 def _local_pool(n_workers: int):
     """A process pool kept for the session (workers keep the pair built by :func:`_pair` between sweeps)."""
+    import atexit
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
-    return ProcessPoolExecutor(n_workers, mp_context=multiprocessing.get_context("spawn"))
+    pool = ProcessPoolExecutor(n_workers, mp_context=multiprocessing.get_context("spawn"))
+    atexit.register(pool.shutdown)  # stop the workers before the interpreter tears its modules down
+    return pool
 
 
 def _local_workers():
