@@ -1,9 +1,10 @@
 """Tooth compliance by finite elements (scikit-fem, optional extra ``fem``).
 
 A linear-elastic model of a tooth segment (:func:`~spiralbevel.meshing.ltca.mesher.mesh_tooth_segment`, quadratic
-tetrahedra by default) clamped at the bore/web is factorized once (``scipy.sparse.linalg.splu``) and solved for unit
-normal loads at every flank-grid node of the loaded flanks of all teeth (many right-hand sides). The result is the
-nodal flexibility G_ab = n_a . u_a(unit load n_b at b) in mm/N (symmetric by reciprocity).
+tetrahedra by default) clamped at the bore/web is assembled in one vectorized pass (:func:`stiffness_matrix`),
+factorized once (:func:`factorize`: ``scipy.sparse.linalg.splu`` in symmetric mode) and solved for unit normal loads
+at every flank-grid node of the loaded flanks of all teeth (many right-hand sides). The result is the nodal
+flexibility G_ab = n_a . u_a(unit load n_b at b) in mm/N (symmetric by reciprocity).
 
 A point load F n at a flank point x is distributed to the four nodes of the flank-grid cell containing x with the
 bilinear weights N_a(x); the flexibility between two points is then c(x, y) = sum_ab N_a(x) G_ab N_b(y), which keeps
