@@ -49,7 +49,7 @@ def run_logspiral(spec, blank, out, steps, report, summary):
             summary.files += outputs.stl_files(tooth, teeth, out)
     if o.step:
         with steps.step("STEP"):
-            summary.files += outputs.step_files(tooth, out)
+            summary.files += outputs.step_files(tooth, out, teeth=teeth)
     cj = report["logspiral"]["conjugacy"]
     summary.highlights.append("conjugacy (envelope of the pinion vs the gear flank): " + ", ".join(
         f"{s} {v.get('max_distance_mm', float('nan')):.2e} mm" for s, v in cj.items()))
