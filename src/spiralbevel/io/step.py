@@ -258,7 +258,22 @@ def _tooth_solid(occ, ga: list, gb: list, sa: list, sb: list, tol: float, n_acro
         return None, "the faces do not sew into one shell"
     if sew.NbFreeEdges() or sew.NbMultipleEdges():
         return None, f"{sew.NbFreeEdges()} free and {sew.NbMultipleEdges()} multiple edges after sewing"
-    maker = B.BRepBuilderAPI_MakeSolid(_downcast(occ, "Shell", shell))
+    # the same shell with its faces in construction order (flanks first, root -> top, convex then concave), so that
+    # a reader finds the flank faces first
+    ordered = occ["TopoDS"].TopoDS_Shell()
+    builder = occ["BRep"].BRep_Builder()
+    builder.MakeShell(ordered)
+    sewn = [sew.Modified(f) for f in faces]
+    explorer = occ["TopExp"].TopExp_Explorer(shell, occ["TopAbs"].TopAbs_ShapeEnum.TopAbs_FACE)
+    in_shell = []  # (construction index, face as oriented in the sewn shell)
+    while explorer.More():
+        face = explorer.Current()
+        in_shell.append((next((k for k, f in enumerate(sewn) if f.IsSame(face)), len(sewn)), face))
+        explorer.Next()
+    for _, face in sorted(in_shell, key=lambda t: t[0]):
+        builder.Add(ordered, face)
+    ordered.Closed(True)
+    maker = B.BRepBuilderAPI_MakeSolid(ordered)
     if not maker.IsDone():
         return None, "no solid from the sewn shell"
     solid = maker.Solid()
