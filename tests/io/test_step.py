@@ -15,7 +15,6 @@ import pytest
 from spiralbevel._core import logspiral as ls
 from spiralbevel._core.rotations import apply, rot_z
 from spiralbevel.errors import DesignError, MissingDependencyError
-from spiralbevel.geometry.surface_mesh import MeshBuilder, TriangleMesh, grid_faces, weld
 
 RHO0, DELTA, BETA, ROT = 100.0, np.radians(20.0), np.radians(35.0), 0.35
 N, M = 25, 13

@@ -1,10 +1,14 @@
-"""STEP export of tooth flanks as exact B-spline surfaces (OpenCascade through the optional ``OCP`` package).
+"""STEP export of teeth and gears with exact B-spline flank surfaces (OpenCascade through the optional ``OCP`` package).
 
 Each flank grid ``points (n_face, n_profile, 3)`` (mm, member frame, toe -> heel along axis 0, root -> top along axis
-1) is interpolated by a bicubic C2 B-spline surface (``GeomAPI_PointsToBSplineSurface``) that passes through every
-node; u runs toe -> heel and v root -> top. The file holds the flank faces of one tooth, optionally the flanks of all
-z teeth (turned by 2 pi k / z about +z) and optionally a closed solid of one tooth sewn from the two flanks and ruled
-top land, root, toe and heel faces. Units: mm (``write.step.unit``). The file is written atomically.
+1) is interpolated by bicubic C2 B-spline surfaces (``GeomAPI_PointsToBSplineSurface``) that pass through every node;
+u runs toe -> heel and v root -> top. A flank whose first rows lie on the generated root fillet gets two faces, fillet
+and blade, meeting at the fillet/blade junction (one bicubic across the junction, where the curvature jumps, would
+wander by ~0.1 mm between the nodes). The file holds the flank faces of one tooth or of all z teeth, one closed tooth
+solid (flanks, root, top land, toe and heel; the last four bridged between the flank edges along arcs about the apex,
+as the STL meshes are, so that they lie on the toe and heel spheres and on the root and face cones where the edges
+do), or a whole gear: that solid placed z times about the axis (one shape, z locations) and fused with a body of
+revolution. Units: mm (``write.step.unit``). The file is written atomically.
 
 Install with ``pip install 'spiralbevel[cad]'`` (package ``cadquery-ocp-novtk``); OCP is imported inside the
 functions, so the rest of spiralbevel works without it.
@@ -21,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from spiralbevel.errors import DesignError, GeometryError, MissingDependencyError
-from spiralbevel.geometry.solid import GearBody, spherical_lerp, flank_grid
+from spiralbevel.geometry.solid import GearBody, flank_grid
 from spiralbevel.io.atomic import atomic_write_bytes
 
 __all__ = ["StepExport", "StepSurface", "flank_surface", "write_step", "read_step_surfaces"]
@@ -230,131 +234,6 @@ def _flank_surfaces(points, fillet_rows: int, parametrization: str, tolerance):
             flank_surface(points[:, fillet_rows:], parametrization, tolerance)]
 
 
-def _bridge(ea, eb, n_across: int):
-    """B-spline face grid between two node polylines ea, eb (k, 3): rungs linear in (rho, theta, azimuth) about the
-    apex, as the triangle meshes bridge them (``geometry.solid``), so that a face between two points of one sphere
-    (toe, heel) or one cone about the axis (root) stays on it."""
-    t = np.linspace(0.0, 1.0, n_across)
-    return np.stack([spherical_lerp(p, q, t) for p, q in zip(ea, eb)])
-
-
-def _tooth_solid(occ, ga: list, gb: list, sa: list, sb: list, tol: float, n_across: int = 7):
-    """Sew the flank surfaces ``sa``, ``sb`` (root -> top lists, the same number per flank, fitted to the node grids
-    ``ga``, ``gb``) and the root, top land, toe and heel faces bridged between their edges into one closed solid;
-    (solid, volume), or (None, reason)."""
-    B = occ["BRepBuilderAPI"]
-    faces = [_face(occ, s) for s in sa + sb]
-    bridges = [(ga[0][:, 0], gb[0][:, 0]), (ga[-1][:, -1], gb[-1][:, -1])]  # root (cutter-tip lines), top land
-    for pa, pb in zip(ga, gb):  # toe and heel, one face per flank segment
-        bridges += [(pa[0], pb[0]), (pa[-1], pb[-1])]
-    for ea, eb in bridges:
-        faces.append(_face(occ, flank_surface(_bridge(ea, eb, n_across))))
-    sew = B.BRepBuilderAPI_Sewing(tol)
-    for f in faces:
-        sew.Add(f)
-    sew.Perform()
-    shell = sew.SewedShape()
-    if shell.ShapeType() != occ["TopAbs"].TopAbs_ShapeEnum.TopAbs_SHELL:
-        return None, "the faces do not sew into one shell"
-    if sew.NbFreeEdges() or sew.NbMultipleEdges():
-        return None, f"{sew.NbFreeEdges()} free and {sew.NbMultipleEdges()} multiple edges after sewing"
-    # the same shell with its faces in construction order (flanks first, root -> top, convex then concave), so that
-    # a reader finds the flank faces first
-    ordered = occ["TopoDS"].TopoDS_Shell()
-    builder = occ["BRep"].BRep_Builder()
-    builder.MakeShell(ordered)
-    sewn = [sew.Modified(f) for f in faces]
-    explorer = occ["TopExp"].TopExp_Explorer(shell, occ["TopAbs"].TopAbs_ShapeEnum.TopAbs_FACE)
-    in_shell = []  # (construction index, face as oriented in the sewn shell)
-    while explorer.More():
-        face = explorer.Current()
-        in_shell.append((next((k for k, f in enumerate(sewn) if f.IsSame(face)), len(sewn)), face))
-        explorer.Next()
-    for _, face in sorted(in_shell, key=lambda t: t[0]):
-        builder.Add(ordered, face)
-    ordered.Closed(True)
-    maker = B.BRepBuilderAPI_MakeSolid(ordered)
-    if not maker.IsDone():
-        return None, "no solid from the sewn shell"
-    solid = maker.Solid()
-    volume = _volume(occ, solid)
-    if volume < 0:  # shell oriented inward: reverse it
-        solid.Reverse()
-        volume = -volume
-    if not _valid(occ, solid):
-        return None, "BRepCheck_Analyzer finds the solid invalid"
-    return solid, volume
-
-
-def _body_solid(occ, pa, pb, body: GearBody):
-    """Solid of revolution under the teeth: the cone through the apex fitted to the root edges of both flanks (its
-    polar angle the mean of theirs), between planes through the lowest toe and highest heel root points, down to
-    the bore. (solid, volume, dict of the chosen values)."""
-    gp = occ["gp"]
-    root = np.concatenate([pa[:, 0], pb[:, 0]])
-    theta = float(np.mean(np.arctan2(np.hypot(root[:, 0], root[:, 1]), root[:, 2])))
-    toe = np.stack([pa[0, 0], pb[0, 0]])
-    heel = np.stack([pa[-1, 0], pb[-1, 0]])
-    z_front, z_back = float(toe[:, 2].min()), float(heel[:, 2].max())
-    front = body.front_z if body.front_z is not None else z_front
-    back = body.back_z if body.back_z is not None else z_back
-    r_toe = float(np.hypot(toe[:, 0], toe[:, 1]).min())
-    bore = body.bore_radius if body.bore_radius is not None else 0.5 * r_toe
-    r_front, r_back = z_front * np.tan(theta), z_back * np.tan(theta)
-    if not 0.0 < bore < min(r_front, r_back):
-        raise DesignError.single("body.bore_radius", bore, f"0 < value < {min(r_front, r_back):.6g} (root radius)",
-                                 "mm")
-    if not front <= z_front:
-        raise DesignError.single("body.front_z", front, f"<= {z_front:.6g} (toe root)", "mm")
-    if not back >= z_back:
-        raise DesignError.single("body.back_z", back, f">= {z_back:.6g} (heel root)", "mm")
-    # profile in the xz half plane: bore front, cone toe (on the front plane), cone heel, bore back
-    prof = [(bore, front), (r_front, front), (r_front, z_front), (r_back, z_back), (r_back, back), (bore, back)]
-    prof = [p for k, p in enumerate(prof) if k == 0 or np.hypot(p[0] - prof[k - 1][0], p[1] - prof[k - 1][1]) > 0]
-    poly = occ["BRepBuilderAPI"].BRepBuilderAPI_MakePolygon()
-    for r, zz in prof:
-        poly.Add(gp.gp_Pnt(float(r), 0.0, float(zz)))
-    poly.Close()
-    face = occ["BRepBuilderAPI"].BRepBuilderAPI_MakeFace(poly.Wire(), True).Face()
-    axis = gp.gp_Ax1(gp.gp_Pnt(0, 0, 0), gp.gp_Dir(0, 0, 1))
-    solid = occ["BRepPrimAPI"].BRepPrimAPI_MakeRevol(face, axis, 2.0 * np.pi).Shape()
-    volume = _volume(occ, solid)
-    if volume < 0:
-        solid.Reverse()
-        volume = -volume
-    return solid, volume
-
-
-def _rotation(occ, k: int, z: int):
-    gp = occ["gp"]
-    trsf = gp.gp_Trsf()
-    trsf.SetRotation(gp.gp_Ax1(gp.gp_Pnt(0, 0, 0), gp.gp_Dir(0, 0, 1)), 2.0 * np.pi * k / z)
-    return trsf
-
-
-def _gear_solid(occ, tooth, body_solid, z: int, fuzzy: float):
-    """Fuse the body with z located copies of one tooth solid (TopLoc locations: one tooth geometry, z placements)."""
-    args, tools = occ["ListOfShape"](), occ["ListOfShape"]()
-    args.Append(body_solid)
-    for k in range(z):
-        tools.Append(tooth.Moved(occ["TopLoc"].TopLoc_Location(_rotation(occ, k, z))))
-    fuse = occ["BRepAlgoAPI"].BRepAlgoAPI_Fuse()
-    fuse.SetArguments(args)
-    fuse.SetTools(tools)
-    fuse.SetFuzzyValue(fuzzy)
-    fuse.SetUseOBB(True)  # oriented bounding boxes: fewer candidate face pairs (measured about 2x faster)
-    fuse.Build()
-    if not fuse.IsDone():
-        return None, "the Boolean fuse of body and teeth failed"
-    fuse.SimplifyResult()
-    shape = fuse.Shape()
-    if _count(occ, shape, "SOLID") != 1:
-        return None, f"{_count(occ, shape, 'SOLID')} solids after the fuse (teeth not joined to the body)"
-    if not _valid(occ, shape):
-        return None, "BRepCheck_Analyzer finds the fused gear invalid"
-    return shape, _volume(occ, shape)
-
-
 def write_step(path: "str | os.PathLike[str]", convex, concave, *, z: int | None = None, solid: bool = False,
                parametrization: str = "iso", tolerance: float | None = None, fillet_rows=0,
                body: GearBody | None = None) -> StepExport:
@@ -402,6 +281,8 @@ def write_step(path: "str | os.PathLike[str]", convex, concave, *, z: int | None
         The solid does not close (sewing leaves free edges, or BRepCheck finds it invalid) or the fused gear is not
         one valid solid.
     """
+    from spiralbevel.io.step_solid import _body_solid, _gear_solid, _rotation, _tooth_solid
+
     occ = _occ()
     pa, _ = flank_grid(convex, "convex")
     pb, _ = flank_grid(concave, "concave")
