@@ -28,8 +28,25 @@ def run_logspiral(spec, blank, out, steps, report, summary):
         from .logspiral_tca import logspiral_tca
 
         _, report["logspiral"]["tca"] = logspiral_tca(pair)
+    crowning = reliefs = None
+    if spec.crowning is not None or o.draft and spec.manufacturing.forging_relief:
+        from . import logspiral_production as lp
+
+        if spec.crowning is not None:
+            with steps.step("mismatched pair: pinion crowning from the mean-point targets"):
+                crowning = lp.design_crowning(spec, pair)
+        if o.draft and spec.manufacturing.forging_relief:
+            with steps.step("forging relief (two feature parameters)"):
+                reliefs = lp.design_reliefs(spec, pair, crowning)
+                report["forging"] = lp.forging_section(spec, pair, reliefs, crowning, out, summary, o.plots)
+        if crowning is not None:
+            with steps.step("TCA and misalignment sensitivity of the modified flanks"):
+                _, report["mismatch"] = lp.mismatch_section(spec, pair, crowning, reliefs, out, summary, o.plots)
     teeth = {Member.PINION: pair.pinion.teeth, Member.GEAR: pair.gear.teeth}
-    tooth = {m: ls.tooth_grids(pair, grids, m) for m in ls.MEMBERS}
+    if crowning is None and reliefs is None:
+        tooth = {m: ls.tooth_grids(pair, grids, m) for m in ls.MEMBERS}
+    else:  # STL, STEP and the tool-path report carry the modified flanks
+        tooth = {m: lp.modified_tooth_grids(pair, m, n_face, n_profile, crowning, reliefs) for m in ls.MEMBERS}
     if o.plots:
         with steps.step("plots"):
             summary.files.append(outputs.curvature_maps(grids, out, spec.title))
@@ -50,6 +67,16 @@ def run_logspiral(spec, blank, out, steps, report, summary):
     if o.step:
         with steps.step("STEP"):
             summary.files += outputs.step_files(tooth, out)
+    if "mismatch" in report:
+        t = report["mismatch"]["tca"]
+        summary.highlights.append(
+            f"mismatched pair: TE {t['te_level_arcsec']:.2f} arcsec (target {spec.crowning.te_level:g}), ellipse a = "
+            f"{t['semi_major_axis_mm']:.3f} mm (target {spec.crowning.semi_major_axis:g}), point contact inside the "
+            f"flanks: {t['point_contact_inside_flanks']}")
+    if "forging" in report:
+        ok = all(v["passes"] for v in report["forging"]["flanks"].values())
+        summary.highlights.append(f"forging relief: draft {spec.manufacturing.draft_angle:g} deg passes on every "
+                                  f"flank: {ok}")
     cj = report["logspiral"]["conjugacy"]
     summary.highlights.append("conjugacy (envelope of the pinion vs the gear flank): " + ", ".join(
         f"{s} {v.get('max_distance_mm', float('nan')):.2e} mm" for s, v in cj.items()))

@@ -112,12 +112,17 @@ class RelievedFlank:
     domain : ParallelogramDomain
         Its domain; the sign of psi selects the branch.
     relief : ForgingRelief or None
-        None: the theoretical flank.
+        None: no forging relief.
+    base_deviation : callable, optional
+        A further displacement along the theoretical outward normal, ``params (..., 2) -> (w (...), grad (..., 2))``
+        in (varphi, phi) (mm, mm/rad), e.g. the crowning of a mismatched pair
+        (:meth:`~spiralbevel.meshing.synthesis.logspiral_crowning.LogSpiralCrowning.deviation`); the relief adds to it.
     """
 
     flank: FlankLike
     domain: object
     relief: "ForgingRelief | None" = None
+    base_deviation: object = None
 
     @property
     def params(self) -> FlankParams:
@@ -139,17 +144,25 @@ class RelievedFlank:
         dA : (...) float, mm^2/rad^2
             |r'_varphi x r'_phi|.
         w : (...) float, mm
-            Relief along the theoretical outward normal (+ = material added).
+            Relief plus base deviation along the theoretical outward normal (+ = material added).
         """
         p = self.params
         g = _ls.geometry(varphi, phi, p.rho0, p.delta, p.beta)
         s = np.where(g["psi"] >= 0, 1.0, -1.0)[..., None]
         n = s * g["n"]
-        if self.relief is None:
-            w = np.zeros(g["psi"].shape)
+        shape = g["psi"].shape
+        if self.relief is None and self.base_deviation is None:
             cr = np.cross(g["r_varphi"], g["r_phi"])
-            return g["r"], n, np.linalg.norm(cr, axis=-1), w
-        w, wa, wb = self.relief.deviation(g["psi"], np.broadcast_to(np.asarray(phi, float), g["psi"].shape), p)
+            return g["r"], n, np.linalg.norm(cr, axis=-1), np.zeros(shape)
+        phi_b = np.broadcast_to(np.asarray(phi, float), shape)
+        if self.relief is not None:
+            w, wa, wb = self.relief.deviation(g["psi"], phi_b, p)
+        else:
+            w, wa, wb = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+        if self.base_deviation is not None:
+            varphi_b = np.broadcast_to(np.asarray(varphi, float), shape)
+            w0, g0 = self.base_deviation(np.stack([varphi_b, phi_b], -1))
+            w, wa, wb = w + w0, wa + g0[..., 0], wb + g0[..., 1]
         cpb = np.cos(g["psi"] - p.beta)
         n_a = s * (math.cos(p.delta) * cpb)[..., None] * g["e1"]           # e1 of the kernel is m
         n_b = s * math.sin(p.delta) * g["e2"]
@@ -227,7 +240,7 @@ class ReliefDesign:
     volume : float, mm^3
         Added material int w dA over the flank.
     max_deviation : float, mm
-        Largest w (at the root edge).
+        Largest relief w (at the root edge), the base deviation left out.
     relieved_fraction : float
         Area fraction of the flank below the start line.
     theoretical_failing_fraction : float
@@ -247,7 +260,8 @@ def _worst(relieved, v, sin_t, varphi, phi):
 
 
 def design_forging_relief(flank: FlankLike, domain, die_direction=(0.0, 0.0, 1.0), draft_angle: float = 0.0,
-                          n_phi: int = 101, n_psi: int = 101, n_start: int = 12) -> ReliefDesign:
+                          n_phi: int = 101, n_psi: int = 101, n_start: int = 12,
+                          base_deviation=None) -> ReliefDesign:
     """The forging relief of least added volume that makes the flank draw from the die.
 
     Parameters
@@ -262,6 +276,9 @@ def design_forging_relief(flank: FlankLike, domain, die_direction=(0.0, 0.0, 1.0
         Check grid (the grid of :func:`relieved_draft_map`): the relief passes on every node of it.
     n_start : int
         Number of trial start lines between the first admissible one and the top (then refined by golden section).
+    base_deviation : callable, optional
+        Deviation already carried by the flank (e.g. its crowning), see :class:`RelievedFlank`; the relief is
+        designed on top of it and the volume counts the relief only.
 
     Returns
     -------
@@ -280,7 +297,7 @@ def design_forging_relief(flank: FlankLike, domain, die_direction=(0.0, 0.0, 1.0
     varphi, phi = domain.grid(int(n_phi), int(n_psi))
     psi = (varphi - phi) * math.sin(p.delta)
     apsi = np.abs(psi)
-    theo = RelievedFlank(flank, domain, None)
+    theo = RelievedFlank(flank, domain, None, base_deviation)
     base = relieved_draft_map(theo, v, theta, n_phi, n_psi)
     g0 = base.normal_dot_die + sin_t
     col_fail = np.any(g0 > 0, axis=0)
@@ -303,7 +320,7 @@ def design_forging_relief(flank: FlankLike, domain, die_direction=(0.0, 0.0, 1.0
     def rate_for(ps):
         """Smallest kappa passing on the grid with start ps (bisection on a monotone condition)."""
         def worst(k):
-            return _worst(RelievedFlank(flank, domain, ForgingRelief(ps, k)), v, sin_t, varphi, phi)
+            return _worst(RelievedFlank(flank, domain, ForgingRelief(ps, k), base_deviation), v, sin_t, varphi, phi)
         hi = 1.0
         while worst(hi) > 0:
             hi *= 2.0
@@ -319,7 +336,7 @@ def design_forging_relief(flank: FlankLike, domain, die_direction=(0.0, 0.0, 1.0
 
     def volume(ps, k):
         r = RelievedFlank(flank, domain, ForgingRelief(ps, k))
-        _, _, dA, w = r.evaluate(varphi, phi)
+        _, _, dA, w = r.evaluate(varphi, phi)  # relief alone
         return _trapz2(w * dA / math.sin(p.delta), psi, phi)
 
     # start lines strictly above the last failing column (a start on a failing node cannot pass there)
@@ -362,8 +379,8 @@ def design_forging_relief(flank: FlankLike, domain, die_direction=(0.0, 0.0, 1.0
             best = (cache[ps][0], ps, cache[ps][1])
     vol, ps, k = best
     relief = ForgingRelief(ps, k)
-    relieved = RelievedFlank(flank, domain, relief)
-    w = relieved.evaluate(varphi, phi)[3]
+    relieved = RelievedFlank(flank, domain, relief, base_deviation)
+    w = RelievedFlank(flank, domain, relief).evaluate(varphi, phi)[3]
     frac = _trapz2((apsi < ps) * base_dA(theo, varphi, phi) / math.sin(p.delta), psi, phi) / area
     return ReliefDesign(relief, relieved, float(vol), float(w.max()), float(frac), base.failing_area_fraction)
 
