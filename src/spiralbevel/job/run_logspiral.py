@@ -60,7 +60,7 @@ def run_logspiral(spec, blank, out, steps, report, summary):
             report["draft"] = _draft(spec, pair, out, summary, o.plots)
     if o.toolpaths:
         with steps.step("5-axis tool paths"):
-            report["toolpaths"] = _toolpaths(spec, pair, out, summary)
+            report["toolpaths"] = _toolpaths(spec, pair, out, summary, crowning, reliefs)
     if o.stl:
         with steps.step("STL"):
             summary.files += outputs.stl_files(tooth, teeth, out)
@@ -107,9 +107,9 @@ def _draft(spec, pair, out, summary, plots):
     return section
 
 
-def _toolpaths(spec, pair, out, summary):
+def _toolpaths(spec, pair, out, summary, crowning=None, reliefs=None):
     from ..io.toolpath_csv import write_toolpath_csv
-    from ..manufacturing.toolpath import plan_toolpath
+    from ..manufacturing.toolpath import follow_lines_of_curvature, plan_toolpath
 
     mf = spec.manufacturing
     section = {"ball_radius_mm": mf.ball_radius, "scallop_height_mm": mf.scallop_height, "flanks": {}}
@@ -118,9 +118,19 @@ def _toolpaths(spec, pair, out, summary):
             f = pair.flank(m, s)
             tp = plan_toolpath(f.surface, f.domain, mf.ball_radius, mf.scallop_height)
             name = f"toolpath_{m.value}_{s.value}.csv"
-            write_toolpath_csv(out / name, tp.rotated(f.rotation))
+            modified = (crowning is not None and m is Member.PINION and s is crowning.side) or (
+                reliefs is not None and reliefs[(m, s)].relief is not None)
+            if modified:  # along the lines of curvature of the crowned / relieved flank (member frame already)
+                from .logspiral_production import contact_surface
+
+                tp = follow_lines_of_curvature(contact_surface(pair, m, s, crowning, reliefs), tp)
+            else:
+                tp = tp.rotated(f.rotation)
+            write_toolpath_csv(out / name, tp)
             summary.files.append(name)
             section["flanks"][f"{m.value}_{s.value}"] = {
+                "along": "lines of curvature of the modified flank" if modified else "varphi-curves (lines of "
+                         "curvature of the theoretical flank)",
                 "file": name, "passes": len(tp), "points": int(sum(len(p.center) for p in tp.paths)),
                 "max_predicted_scallop_mm": float(np.max(tp.predicted_scallop)) if len(tp) > 1 else 0.0,
             }
