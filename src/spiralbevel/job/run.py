@@ -9,6 +9,7 @@ from pathlib import Path
 from .. import __version__
 from ..io.design_schema import DesignFile
 from .blank import blank_from_design
+from .rating import rating_report
 from .progress import Steps
 
 
@@ -61,6 +62,7 @@ def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
         summary.highlights.append(
             f"blank: delta1 = {math.degrees(blank.delta1):.4f} deg, delta2 = {math.degrees(blank.delta2):.4f} deg, "
             f"Rm = {blank.Rm:.4f} mm")
+        rating_report(spec, blank, report, summary)
         if kind == "log-spiral":
             from .run_logspiral import run_logspiral
 

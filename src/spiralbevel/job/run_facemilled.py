@@ -60,10 +60,14 @@ def run_facemilled(spec, blank, out, steps, report, summary):
 
             ltca_result, report["ltca"] = run_ltca_job(spec, blank, setups)
             lt = report["ltca"]
-            summary.highlights.append(
-                f"LTCA {lt['side']}: torque {lt['torque_Nm']:.2f} N m (approach 0.00635 mm at "
-                f"{lt['torque_for_approach_Nm']:.2f} N m), loaded TE {lt['max_loaded_transmission_error_arcsec']:.3f} "
-                f"arcsec, max pressure {lt['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
+            if "error" in lt:
+                summary.highlights.append(lt["error"])
+            else:
+                summary.highlights.append(
+                    f"LTCA {lt['side']}: torque {lt['torque_Nm']:.2f} N m (approach 0.00635 mm at "
+                    f"{lt['torque_for_approach_Nm']:.2f} N m), loaded TE "
+                    f"{lt['max_loaded_transmission_error_arcsec']:.3f} "
+                    f"arcsec, max pressure {lt['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
     with steps.step("ease-off and measurement grids"):
         from .inspection import easeoff_maps, measurement_files
 
