@@ -45,3 +45,22 @@ def test_less_relief_fails(forged):
     for less in (ForgingRelief(r.start_psi - step, r.rate), ForgingRelief(r.start_psi, r.rate * (1 - 1e-4))):
         g = RelievedFlank(f.surface, f.domain, less, crowning.deviation())
         assert not relieved_draft_map(g, spec.manufacturing.die_direction, theta).passes
+
+
+def test_report_section_of_the_forging_relief(forged, tmp_path):
+    from spiralbevel.job import logspiral_production as lp
+
+    spec, pair, crowning, reliefs = forged
+
+    class Summary:
+        files = []
+
+    section = lp.forging_section(spec, pair, reliefs, crowning, tmp_path, Summary, plots=False)
+    assert section["draft_angle_deg"] == spec.manufacturing.draft_angle
+    flanks = section["flanks"]
+    assert set(flanks) == {"pinion_convex", "pinion_concave", "gear_convex", "gear_concave"}
+    assert all(f["passes"] and f["failing_area_fraction_after"] == 0.0 for f in flanks.values())
+    pc = flanks["pinion_convex"]
+    r = reliefs[(Member.PINION, Side.CONVEX)].relief
+    assert pc["start_psi_deg"] == pytest.approx(math.degrees(r.start_psi)) and pc["rate"] == r.rate
+    assert 0 < pc["max_deviation_um"] < 50 and pc["failing_area_fraction_before"] > 0

@@ -158,7 +158,7 @@ def test_bad_draft_angle(bad):
     assert "draft_angle" in str(info.value)
 
 
-@pytest.mark.parametrize("field,value", [("start_psi", 0.0), ("rate", -1.0), ("rate", float("inf"))])
+@pytest.mark.parametrize("field,value", [("start_psi", 0.0), ("rate", -1.0), ("rate", float("inf")), ("rate", True)])
 def test_bad_relief_parameters(field, value):
     kw = {"start_psi": 0.5, "rate": 1.0, field: value}
     with pytest.raises(DesignError) as info:

@@ -60,8 +60,7 @@ def contact_surface(pair, member, side, crowning=None, reliefs=None):
     """The flank as TCA sees it: exact log-spiral flank, crowned and/or relieved when asked."""
     from ..manufacturing._flank import check_flank
     from ..meshing.contact_surface import NormalDeviation
-    from ..meshing.synthesis.logspiral_crowning import logspiral_contact_surface
-    from ..meshing.synthesis.logspiral_crowning import _SumDeviation
+    from ..meshing.synthesis.logspiral_crowning import SumDeviation, logspiral_contact_surface
 
     base = logspiral_contact_surface(pair, member, side)
     parts = [_crown_of(crowning, member, side)]
@@ -70,7 +69,7 @@ def contact_surface(pair, member, side, crowning=None, reliefs=None):
         f = pair.flank(member, side)
         parts.append(rd.relief.contact_deviation(check_flank(f.surface, f.domain)))
     parts = [p for p in parts if p is not None]
-    return NormalDeviation(base, _SumDeviation(*parts)) if parts else base
+    return NormalDeviation(base, SumDeviation(*parts)) if parts else base
 
 
 def modified_tooth_grids(pair, member, n_face, n_profile, crowning=None, reliefs=None):

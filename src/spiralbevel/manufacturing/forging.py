@@ -69,10 +69,11 @@ class ForgingRelief:
     rate: float
 
     def __post_init__(self):
-        for name, lo, unit in (("start_psi", 0.0, "rad"), ("rate", -1e-300, "-")):
+        for name, strict, unit in (("start_psi", True, "rad"), ("rate", False, "-")):
             v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float, np.floating)) or not math.isfinite(v) or v <= lo:
-                raise DesignError.single(name, v, f"a finite number > {max(lo, 0.0)}", unit)
+            real = not isinstance(v, bool) and isinstance(v, (int, float, np.floating)) and math.isfinite(v)
+            if not real or v < 0 or (strict and v == 0):
+                raise DesignError.single(name, v, "a finite number > 0" if strict else "a finite number >= 0", unit)
             object.__setattr__(self, name, float(v))
 
     def deviation(self, psi, phi, p: FlankParams):
@@ -392,6 +393,4 @@ def base_dA(relieved, varphi, phi):
 
 def _trapz2(f, psi, phi):
     """Trapezoidal integral of f over the (psi, phi) tensor grid (rows phi, columns psi)."""
-    inner = np.trapezoid(f, psi[0, :], axis=1) if hasattr(np, "trapezoid") else np.trapz(f, psi[0, :], axis=1)
-    return float(abs(np.trapezoid(inner, phi[:, 0]) if hasattr(np, "trapezoid") else np.trapz(inner, phi[:, 0])))
-
+    return float(abs(np.trapezoid(np.trapezoid(f, psi[0, :], axis=1), phi[:, 0])))

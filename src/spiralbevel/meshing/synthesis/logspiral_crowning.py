@@ -48,7 +48,8 @@ from ..contact_surface import NormalDeviation, quadratic_crowning
 from ..tca_surfaces import LogSpiralSurface
 from .mean_contact import path_reference
 
-__all__ = ["LogSpiralCrowning", "design_logspiral_crowning", "logspiral_contact_surface", "crowned_contact_surface"]
+__all__ = ["LogSpiralCrowning", "design_logspiral_crowning", "logspiral_contact_surface", "crowned_contact_surface",
+           "SumDeviation"]
 
 
 @dataclass(frozen=True)
@@ -156,7 +157,7 @@ def design_logspiral_crowning(pair, side: Side = Side.CONVEX, *, semi_major_axis
     surf = pair.flank(Member.PINION, side).surface
     geo = surf.evaluate(*q1)  # unrotated: the tangents only need the pinion's own frame
     r_a = geo.e1 * math.sqrt(float(geo.E))  # r_varphi = |r_varphi| e1 (FlankGeometry: e1 = r_varphi / |r_varphi|)
-    r_b = np.asarray(surf.point(q1[0], q1[1] + 1e-7) - surf.point(q1[0], q1[1] - 1e-7)) / 2e-7
+    r_b = math.copysign(math.sqrt(float(geo.G)), surf.spiral_angle) * geo.e2  # r_phi; e2 points toe -> heel
     t_p, t_l = path_reference(geo.point, geo.normal, (0.0, 0.0, 1.0), pair.pinion.pitch_angle)
     A, B = float(r_a @ t_p), float(r_b @ t_l)
     q = math.tan(path_direction) * A / B
@@ -196,8 +197,14 @@ def design_logspiral_crowning(pair, side: Side = Side.CONVEX, *, semi_major_axis
                              float(te_level), float(approach), lam, lever)
 
 
-class _SumDeviation:
-    """Sum of deviation functions (each ``params -> (w, grad)``)."""
+class SumDeviation:
+    """Sum of deviation functions for :class:`~spiralbevel.meshing.contact_surface.NormalDeviation`.
+
+    Parameters
+    ----------
+    *parts : callable
+        Each ``params (..., 2) -> (w (...) mm, grad (..., 2) mm/rad)``.
+    """
 
     def __init__(self, *parts):
         self.parts = parts
@@ -236,4 +243,4 @@ def crowned_contact_surface(pair, crowning: LogSpiralCrowning | None, relief=Non
     parts = [p for p in ((crowning.deviation() if crowning is not None else None), relief) if p is not None]
     if not parts:
         return base
-    return NormalDeviation(base, _SumDeviation(*parts))
+    return NormalDeviation(base, SumDeviation(*parts))
