@@ -6,6 +6,7 @@ import math
 import pytest
 
 from spiralbevel.rating.load_factors import transverse_load_factor
+from spiralbevel.rating.contact_lines import contact_line_layout, contact_line_length
 from spiralbevel.rating.pitting import load_sharing_factor, mid_zone_factor
 
 
@@ -31,10 +32,26 @@ def test_mid_zone_factor_spur_limit():
     assert mid_zone_factor(v) == pytest.approx(math.tan(v["alpha_vet"]) / math.sqrt(t1 * t2), rel=1e-14)
 
 
-def test_load_sharing_and_transverse_factor_continuous_at_eps_vgamma_two():
+def test_transverse_factor_continuous_at_eps_vgamma_two():
     lo, hi = _virtual(1.2, 0.8 - 1e-12), _virtual(1.2, 0.8 + 1e-12)
-    assert load_sharing_factor(lo) == 1.0
-    assert load_sharing_factor(hi) == pytest.approx(1.0, abs=1e-5)
     a = transverse_load_factor(lo, 12000.0, 26.0, 1.95, 1.0, 0.7)
     b = transverse_load_factor(hi, 12000.0, 26.0, 1.95, 1.0, 0.7)
     assert a["K_Halpha"] == pytest.approx(b["K_Halpha"], rel=1e-9)
+
+
+def _with_lines(eps_vbeta):
+    v = _virtual(1.165, eps_vbeta)
+    v.update(g_valpha=13.12, p_vet=11.262, b_veff=21.59, beta_vb=math.radians(32.615))
+    lines = contact_line_layout(v)
+    v.update(lines)
+    for key in ("m", "t", "r"):
+        v[f"l_b{key}"] = contact_line_length(lines[f"f_{key}"], v, lines["f_max"])
+    return v
+
+
+def test_load_sharing_continuous_at_eps_vbeta_one():
+    # below eps_vbeta = 1 the three contact lines are shifted by X, which vanishes at eps_vbeta = 1
+    lo, hi = _with_lines(1.0 - 1e-12), _with_lines(1.0)
+    for key in ("f_m", "f_t", "f_r", "l_bm", "l_bt", "l_br"):
+        assert lo[key] == pytest.approx(hi[key], rel=1e-9, abs=1e-9)
+    assert load_sharing_factor(lo)["Z_LS"] == pytest.approx(load_sharing_factor(hi)["Z_LS"], rel=1e-9)

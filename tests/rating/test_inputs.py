@@ -27,6 +27,7 @@ def _replace(text, key, line):
     ("sigma_Flim", None, "rating.sigma_Flim", ["required", "N/mm^2"]),
     ("oil_viscosity", None, "rating.oil_viscosity", ["required", "mm^2/s"]),
     ("mounting", 'mounting = "floating"', "rating.mounting", ["both-straddle"]),
+    ("profile_crowning", 'profile_crowning = "medium"', "rating.profile_crowning", ["low", "high"]),
     ("pitch_deviation", "pitch_deviation = [12, -1]", "rating.pitch_deviation", ["> 0"]),
 ])
 def test_schema_errors(key, line, field, words):
@@ -65,6 +66,7 @@ def test_rating_input_validates():
               sigma_Flim=(480.0, 480.0), nu40=150.0)
     RatingInput(**ok)
     for key, bad in (("n1", 0.0), ("T1", -1.0), ("K_A", 0.9), ("f_pt", (12.0,)), ("nu40", float("nan")),
-                     ("sigma_Hlim", (1500.0, 0.0)), ("mounting", "floating")):
+                     ("sigma_Hlim", (1500.0, 0.0)), ("mounting", "floating"),
+                     ("profile_crowning", "medium")):
         with pytest.raises(DesignError, match=key):
             RatingInput(**{**ok, key: bad})

@@ -242,6 +242,9 @@ class RatingSpec(_Model):
     contact_pattern: Literal["full-load", "light-load", "sample-estimated"] = _f(
         "light-load", description="contact pattern verified under full load, under light test load, or on a sample "
         "set and estimated for full load")
+    profile_crowning: Literal["low", "high"] = _f(
+        "low", description="profile crowning of the pair: the distribution of the load over the contact lines "
+        "(ISO 10300-2 load sharing factor)")
     cutter_edge_radius: Optional[Pair] = _f(None, unit="mm", description="rho_a0 [pinion, gear]; default: the "
                                             "edge radius of the cutter of each member's drive flank")
     youngs_modulus: float = _f(206000.0, unit="N/mm^2", gt=1000.0, le=1e6, description="E of both members")

@@ -68,6 +68,9 @@ def run_facemilled(spec, blank, out, steps, report, summary):
                     f"{lt['torque_for_approach_Nm']:.2f} N m), loaded TE "
                     f"{lt['max_loaded_transmission_error_arcsec']:.3f} "
                     f"arcsec, max pressure {lt['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
+            from .rating import rating_ltca_report
+
+            rating_ltca_report(spec, blank, report, summary, ltca_result)
     with steps.step("ease-off and measurement grids"):
         from .inspection import easeoff_maps, measurement_files
 

@@ -7,7 +7,8 @@ symbols in ASCII (``sigma_H``, ``Z_M-B``, ``Y_Fa1`` ...). Lengths mm, forces N, 
 """
 
 from .inputs import RatingInput, pitch_deviation_from_grade
+from .ltca_compare import compare_with_ltca
 from .rate import rate_iso10300
 from .result import RatingResult
 
-__all__ = ["RatingInput", "RatingResult", "rate_iso10300", "pitch_deviation_from_grade"]
+__all__ = ["RatingInput", "RatingResult", "rate_iso10300", "pitch_deviation_from_grade", "compare_with_ltca"]

@@ -8,10 +8,12 @@ from typing import Optional
 
 from ..errors import DesignError, Problem
 
-__all__ = ["RatingInput", "pitch_deviation_from_grade", "MOUNTINGS", "CONTACT_PATTERNS", "MATERIALS"]
+__all__ = ["RatingInput", "pitch_deviation_from_grade", "MOUNTINGS", "CONTACT_PATTERNS", "PROFILE_CROWNINGS",
+           "MATERIALS"]
 
 MOUNTINGS = ("both-straddle", "one-cantilever", "both-cantilever")
 CONTACT_PATTERNS = ("full-load", "light-load", "sample-estimated")
+PROFILE_CROWNINGS = ("low", "high")
 MATERIALS = ("case-hardened", "through-hardened")
 
 
@@ -43,6 +45,9 @@ class RatingInput:
         How the contact pattern is verified: ``"full-load"`` (each set in its housing under full load),
         ``"light-load"`` (each set under light test load) or ``"sample-estimated"`` (a sample set, estimated for
         full load).
+    profile_crowning : str
+        ``"low"`` (default) or ``"high"`` profile crowning: the distribution of the load over the contact lines
+        (load sharing factor Z_LS, Y_LS).
     E : float, N/mm^2
         Young's modulus of both members.
     nu : float
@@ -69,6 +74,7 @@ class RatingInput:
     K_A: float = 1.0
     mounting: str = "one-cantilever"
     contact_pattern: str = "light-load"
+    profile_crowning: str = "low"
     E: float = 206000.0
     nu: float = 0.3
     density: float = 7.86e-6
@@ -108,6 +114,7 @@ class RatingInput:
             check("load_cycles", self.load_cycles, 0.0, 1e15, "-", "0 < N_L <= 1e15")
         for name, v, allowed in (("mounting", self.mounting, MOUNTINGS),
                                  ("contact_pattern", self.contact_pattern, CONTACT_PATTERNS),
+                                 ("profile_crowning", self.profile_crowning, PROFILE_CROWNINGS),
                                  ("material", self.material, MATERIALS)):
             if v not in allowed:
                 problems.append(Problem(name, v, " | ".join(allowed), "-"))

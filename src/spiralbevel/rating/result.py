@@ -30,7 +30,13 @@ SYMBOLS = {
     "d_vn2": ("virtual", "normal-section reference diameter, wheel", "mm"),
     "d_van1": ("virtual", "normal-section tip diameter, pinion", "mm"),
     "d_van2": ("virtual", "normal-section tip diameter, wheel", "mm"),
-    "l_bm": ("virtual", "length of the middle contact line (formula not confirmed)", "mm"),
+    "f_max": ("virtual", "distance of the corner of the zone of action from its centre", "mm"),
+    "f_m": ("virtual", "distance of the middle contact line from the centre", "mm"),
+    "f_t": ("virtual", "distance of the tip contact line from the centre", "mm"),
+    "f_r": ("virtual", "distance of the root contact line from the centre", "mm"),
+    "l_bm": ("virtual", "length of the middle contact line", "mm"),
+    "l_bt": ("virtual", "length of the tip contact line", "mm"),
+    "l_br": ("virtual", "length of the root contact line", "mm"),
     "x_hm1": ("virtual", "profile shift coefficient, pinion", "-"),
     "x_hm2": ("virtual", "profile shift coefficient, wheel", "-"),
     "x_sm1": ("virtual", "thickness modification coefficient, pinion", "-"),
@@ -44,8 +50,17 @@ SYMBOLS = {
     "K_Halpha": ("factors", "transverse load factor, contact", "-"),
     "K_Falpha": ("factors", "transverse load factor, root", "-"),
     "Z_M-B": ("pitting", "mid-zone factor", "-"),
-    "Z_LS": ("pitting", "load sharing factor (formula not confirmed)", "-"),
-    "Z_E": ("pitting", "elasticity factor", "N^0.5/mm"), "Z_K": ("pitting", "bevel gear factor", "-"),
+    "p_m*": ("pitting", "related peak load, middle contact line", "-"),
+    "p_t*": ("pitting", "related peak load, tip contact line", "-"),
+    "p_r*": ("pitting", "related peak load, root contact line", "-"),
+    "A_m*": ("pitting", "related area, middle contact line", "mm"),
+    "A_t*": ("pitting", "related area, tip contact line", "mm"),
+    "A_r*": ("pitting", "related area, root contact line", "mm"),
+    "Z_LS": ("pitting", "load sharing factor", "-"),
+    "F_n": ("pitting", "nominal normal force at the mean point", "N"),
+    "Z_Hyp": ("pitting", "hypoid factor", "-"),
+    "Z_E": ("pitting", "elasticity factor", "N^0.5/mm"),
+    "Z_K": ("pitting", "bevel gear factor (permissible side)", "-"),
     "sigma_H0": ("pitting", "nominal contact stress", "N/mm^2"), "sigma_H": ("pitting", "contact stress", "N/mm^2"),
     "Z_L": ("pitting", "lubricant factor", "-"), "Z_v": ("pitting", "speed factor", "-"),
     "Z_R": ("pitting", "roughness factor", "-"), "Z_X": ("pitting", "size factor", "-"),
@@ -55,6 +70,7 @@ for _k in (1, 2):
     _m = "pinion" if _k == 1 else "wheel"
     SYMBOLS.update({
         f"Z_NT{_k}": ("pitting", f"life factor, {_m}", "-"),
+        f"sigma_HG{_k}": ("pitting", f"pitting stress limit, {_m}", "N/mm^2"),
         f"sigma_HP{_k}": ("pitting", f"permissible contact stress, {_m}", "N/mm^2"),
         f"S_H{_k}": ("pitting", f"safety factor for pitting, {_m}", "-"),
     })
@@ -75,7 +91,11 @@ for _k in (1, 2):
     })
 SYMBOLS.update({
     "Y_eps": ("root", "contact ratio factor", "-"),
-    "Y_BS": ("root", "bevel spiral angle factor (not computed: taken as 1)", "-"),
+    "b_a": ("root", "developed face width of the tooth (Y_BS)", "mm"),
+    "l_bb": ("root", "projected length of the middle contact line (Y_BS)", "mm"),
+    "a_BS": ("root", "coefficient a of Y_BS", "-"), "b_BS": ("root", "coefficient b of Y_BS", "-"),
+    "c_BS": ("root", "coefficient c of Y_BS", "-"),
+    "Y_BS": ("root", "bevel spiral angle factor", "-"),
     "Y_LS": ("root", "load sharing factor", "-"), "Y_ST": ("root", "stress correction factor of the test gear", "-"),
 })
 for _k in (1, 2):
@@ -87,6 +107,7 @@ for _k in (1, 2):
         f"Y_deltarelT{_k}": ("root", f"relative notch sensitivity factor, {_m}", "-"),
         f"Y_RrelT{_k}": ("root", f"relative surface factor, {_m}", "-"),
         f"Y_X{_k}": ("root", f"size factor, {_m}", "-"),
+        f"sigma_FG{_k}": ("root", f"tooth root stress limit, {_m}", "N/mm^2"),
         f"sigma_FP{_k}": ("root", f"permissible tooth root stress, {_m}", "N/mm^2"),
         f"S_F{_k}": ("root", f"safety factor for bending, {_m}", "-"),
     })

@@ -10,7 +10,8 @@ import math
 
 from ..errors import ConvergenceError
 
-__all__ = ["tooth_form", "contact_ratio_factor", "life_factor_F", "notch_sensitivity_factor",
+__all__ = ["tooth_form", "contact_ratio_factor", "bevel_spiral_angle_factor", "life_factor_F",
+           "notch_sensitivity_factor",
            "surface_factor", "size_factor_F"]
 
 
@@ -122,3 +123,37 @@ def size_factor_F(mmn: float, material: str) -> float:
     if material == "case-hardened":
         return min(max(1.05 - 0.01 * mmn, 0.8), 1.0)
     return min(max(1.03 - 0.006 * mmn, 0.85), 1.0)
+
+
+def bevel_spiral_angle_factor(v: dict, h_m1: float, h_m2: float) -> dict:
+    """Y_BS, the bevel spiral angle factor of ISO 10300-3 Method B1 (spiral bevel gears).
+
+    Parameters
+    ----------
+    v : dict
+        Virtual gear quantities (``b_v, beta_v, beta_vb, l_bm``; mm, rad).
+    h_m1, h_m2 : float, mm
+        Mean whole depths of pinion and wheel (h_am + h_fm).
+
+    Returns
+    -------
+    dict
+        ``Y_BS`` and its inputs ``b_a`` (developed face width of the tooth, mm), ``l_bb`` (projected length of the
+        middle contact line, mm), ``a_BS, b_BS, c_BS`` (-).
+
+    Notes
+    -----
+    The tooth is modelled as a plate of developed face width b_a = b_v/cos(beta_v) loaded along the middle contact
+    line, whose projection onto the face width is l_bb = l_bm cos(beta_vb)/cos(beta_v). With x = 2 b_a/(h_m1 + h_m2):
+    a_BS = -0.0182 x^2 + 0.4736 x - 0.32, b_BS = -0.0032 x^2 + 0.0526 x + 0.712, c_BS = -0.0050 x^2 + 0.0850 x + 0.54
+    and Y_BS = a_BS/c_BS (l_bb/b_a - 1.05 b_BS)^2 + 1 (>= 1: a line load shorter than the tooth concentrates the
+    root stress). Y_BS = 1 for beta_v = 0, where the factor does not apply.
+    """
+    b_a = v["b_v"] / math.cos(v["beta_v"])
+    l_bb = v["l_bm"] * math.cos(v["beta_vb"]) / math.cos(v["beta_v"])
+    x = 2.0 * b_a / (h_m1 + h_m2)
+    a = -0.0182 * x * x + 0.4736 * x - 0.32
+    b = -0.0032 * x * x + 0.0526 * x + 0.712
+    c = -0.0050 * x * x + 0.0850 * x + 0.54
+    y = a / c * (l_bb / b_a - 1.05 * b) ** 2 + 1.0 if v["beta_v"] > 0.0 else 1.0
+    return {"Y_BS": y, "b_a": b_a, "l_bb": l_bb, "a_BS": a, "b_BS": b, "c_BS": c}

@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 from ._blank import BlankData
+from .contact_lines import contact_line_layout, contact_line_length
 
 __all__ = ["virtual_gears"]
 
@@ -28,7 +29,7 @@ def virtual_gears(g: BlankData, b_eff_fraction: float = 0.85) -> dict:
     dict
         ISO symbol -> value (lengths mm, angles rad): ``d_v1, d_v2, u_v, a_v, beta_v, beta_vb, alpha_vet, m_vt,
         z_v1, z_v2, d_va1, d_va2, d_vb1, d_vb2, p_vet, g_valpha, eps_valpha, b_v, b_veff, eps_vbeta, eps_vgamma,
-        rho_rel, z_vn1, z_vn2, d_vn1, d_vn2, d_van1, d_van2, l_bm``.
+        rho_rel, z_vn1, z_vn2, d_vn1, d_vn2, d_van1, d_van2, f_max, f_m, f_t, f_r, l_bm, l_bt, l_br``.
 
     Notes
     -----
@@ -40,10 +41,8 @@ def virtual_gears(g: BlankData, b_eff_fraction: float = 0.85) -> dict:
     curvature normal to the contact line at the pitch point, a_v sin(alpha_vet) u_v/((1 + u_v)^2 cos(beta_vb));
     z_vn = z_v/(cos^2(beta_vb) cos(beta_v)).
 
-    l_bm, the length of the middle contact line, is taken here as the length of the contact line through the centre
-    of the rectangular zone of action (g_valpha along the profile, b_v,eff across the face) inclined at beta_vb. The
-    standard's own formula for l_bm could not be confirmed; on ISO/TR 10300-30 Sample 1 this length exceeds the
-    published value by 8.5 % (see docs/rating.md).
+    l_bm, l_bt, l_br are the lengths of the middle, tip and root contact lines inside the contact pattern, at the
+    distances f_m, f_t, f_r from the centre of the zone of action (``contact_lines``).
     """
     alpha_e = g.alpha_eD
     d_v1 = g.dm1 / math.cos(g.delta1)
@@ -70,12 +69,16 @@ def virtual_gears(g: BlankData, b_eff_fraction: float = 0.85) -> dict:
     z_v1, z_v2 = d_v1 / m_vt, d_v2 / m_vt
     z_vn1, z_vn2 = z_v1 / cn, z_v2 / cn
     d_vn1, d_vn2 = z_vn1 * g.mmn, z_vn2 * g.mmn
-    l_bm = min(b_veff / math.cos(beta_vb), g_valpha / math.sin(beta_vb)) if beta_vb > 0 else b_veff
-    return {
+    out = {
         "d_v1": d_v1, "d_v2": d_v2, "u_v": u_v, "a_v": a_v, "beta_v": beta_v, "beta_vb": beta_vb,
         "alpha_vet": alpha_vet, "m_vt": m_vt, "z_v1": z_v1, "z_v2": z_v2, "d_va1": d_va1, "d_va2": d_va2,
         "d_vb1": d_vb1, "d_vb2": d_vb2, "p_vet": p_vet, "g_valpha": g_valpha, "eps_valpha": eps_valpha,
         "b_v": b_v, "b_veff": b_veff, "eps_vbeta": eps_vbeta, "eps_vgamma": eps_vgamma, "rho_rel": rho_rel,
         "z_vn1": z_vn1, "z_vn2": z_vn2, "d_vn1": d_vn1, "d_vn2": d_vn2,
-        "d_van1": d_vn1 + 2.0 * g.ham1, "d_van2": d_vn2 + 2.0 * g.ham2, "l_bm": l_bm,
+        "d_van1": d_vn1 + 2.0 * g.ham1, "d_van2": d_vn2 + 2.0 * g.ham2,
     }
+    lines = contact_line_layout(out)
+    out.update(lines)
+    for key in ("m", "t", "r"):
+        out[f"l_b{key}"] = contact_line_length(lines[f"f_{key}"], out, lines["f_max"])
+    return out
