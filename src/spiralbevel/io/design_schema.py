@@ -14,7 +14,7 @@ from .angles import parse_angle_deg
 
 __all__ = ["Angle", "GearSetSpec", "DepthSpec", "FlankSpec", "ManufacturingSpec", "OutputSpec", "CutterSpec",
            "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "SynthesisSpec", "LTCASpec",
-           "RatingSpec", "DesignFile"]
+           "CrowningSpec", "MisalignmentSpec", "RatingSpec", "DesignFile"]
 
 Angle = Annotated[float, BeforeValidator(parse_angle_deg)]
 GridCount = Annotated[int, Field(ge=3, le=401)]
@@ -88,6 +88,10 @@ class ManufacturingSpec(_Model):
     die_direction: tuple[float, float, float] = _f((0.0, 0.0, 1.0), unit="-", description="forging die opening")
     ball_radius: float = _f(2.0, unit="mm", gt=0.0, le=50.0, description="ball-end tool radius")
     scallop_height: float = _f(0.005, unit="mm", gt=0.0, le=1.0, description="allowed scallop height")
+    draft_angle: Angle = _f(0.0, unit="deg", ge=0.0, lt=45.0,
+                            description="minimum forging draft angle: n_out . v_d <= -sin(draft_angle)")
+    forging_relief: bool = _f(False, description="log-spiral: relieve the flanks that fail the draft (two feature "
+                              "parameters of least added volume, docs/forging.md)")
 
     @field_validator("die_direction")
     @classmethod
@@ -169,6 +173,28 @@ class SynthesisSpec(_Model):
     control_points: int = _f(11, ge=3, le=61, description="multi-point control: number of control points")
     offset_interpolation: Literal["spline", "linear", "polynomial"] = _f(
         "spline", description="blank-offset law between control points")
+
+
+class MisalignmentSpec(_Model):
+    """Misalignment sizes of the sensitivity study (each applied alone; signs in docs/conventions.md)."""
+
+    pinion_axial: float = _f(0.05, unit="mm", gt=0.0, le=5.0, description="Delta A1")
+    gear_axial: float = _f(0.05, unit="mm", gt=0.0, le=5.0, description="Delta A2")
+    offset: float = _f(0.05, unit="mm", gt=0.0, le=5.0, description="Delta E")
+    shaft_angle: Angle = _f(0.05, unit="deg", gt=0.0, le=2.0, description="Delta gamma")
+
+
+class CrowningSpec(_Model):
+    """Log-spiral designs: crown the pinion so that the conjugate pair becomes mismatched (point contact), from
+    targets at the mean point (docs/logspiral_mismatch.md)."""
+
+    side: Literal["convex", "concave"] = _f("convex", description="pinion flank crowned (meets the other gear side)")
+    semi_major_axis: float = _f(6.0, unit="mm", gt=0.0, le=50.0, description="contact ellipse a at the mean point")
+    path_direction: Angle = _f(20.0, unit="deg", gt=-89.0, lt=89.0,
+                               description="eta: path on the pinion flank from the profile toward the heel")
+    te_level: float = _f(8.0, unit="arcsec", gt=0.0, le=600.0, description="parabolic TE at the cycle ends")
+    approach: float = _f(0.00635, unit="mm", gt=0.0, le=0.1, description="elastic approach of the ellipse")
+    misalignment: MisalignmentSpec = MisalignmentSpec()
 
 
 class LTCASpec(_Model):
@@ -260,6 +286,13 @@ class DesignFile(_Model):
     face_milling: FaceMillingSpec = FaceMillingSpec()
     synthesis: Optional[SynthesisSpec] = None
     ltca: Optional[LTCASpec] = None
+    crowning: Optional[CrowningSpec] = None
     rating: Optional[RatingSpec] = None
     manufacturing: ManufacturingSpec = ManufacturingSpec()
     output: OutputSpec = OutputSpec()
+
+    @model_validator(mode="after")
+    def _crowning_is_logspiral(self):
+        if self.crowning is not None and self.flank.kind != "log-spiral":
+            raise ValueError("[crowning] applies to flank.kind = 'log-spiral' only (face-milled pairs: [synthesis])")
+        return self

@@ -81,7 +81,8 @@ def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
 
 def _logspiral_steps(spec) -> int:
     o = spec.output
-    return 4 + int(o.plots) + int(o.draft) + int(o.toolpaths) + int(o.stl) + int(o.step)
+    extra = 2 * int(spec.crowning is not None) + int(bool(o.draft and spec.manufacturing.forging_relief))
+    return 4 + int(o.plots) + int(o.draft) + int(o.toolpaths) + int(o.stl) + int(o.step) + extra
 
 
 def _facemilled_steps(spec) -> int:
