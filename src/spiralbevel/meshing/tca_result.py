@@ -125,7 +125,7 @@ class TCAResult:
     def _pick(self, arr):
         arr = np.asarray(arr)
         out = np.full((arr.shape[0],) + arr.shape[2:], np.nan)
-        ok = (self.pair >= 0) & (np.asarray(self.status) != ContactStatus.EDGE)
+        ok = self.pair >= 0
         out[ok] = arr[np.nonzero(ok)[0], self.pair[ok]]
         return out
 
