@@ -37,6 +37,7 @@ from ..errors import DesignError, NoContactError, Problem
 from .contact_problem import ContactProblem
 from .contact_surface import surface_contains, surface_derivatives
 from .tca_edge import edge_stage
+from .tca_transfer import exact_transfers
 from .ellipse import GLEASON_APPROACH
 from .misalignment import Misalignment
 from .tca_result import ContactStatus, TCAResult
@@ -259,8 +260,8 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     off = (phi1 - phi1_mean)[:, None] + pairs[None, :] * T  # effective offsets (n, P)
     xp0 = prob.path_tangent(Jm, dm[2], Em)[0]
     half = T / 2
-    nodes, X, Xp, (o_fail_lo, o_fail_hi) = _continuation(prob, xm, xp0, phi1_mean, max(off.min(), -half),
-                                                         min(off.max(), half), half, max(tol, 1e-8))
+    nodes, X, Xp, (o_fail_lo, o_fail_hi) = _continuation(prob, xm, xp0, phi1_mean, off.min(),
+                                                         off.max(), half, max(tol, 1e-8))
     # ---------------------------------------------------------------- 3. all positions x pairs
     # beyond a node the continuation could not reach, the path of contact has ended (the extended flanks end or
     # the normals turn away): those offsets are not solved and are reported as no contact
@@ -357,7 +358,7 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     sel = np.where(anyv, np.argmax(rank, axis=1), -1)
     status = np.where(anyv, sp2[np.arange(n), np.maximum(sel, 0)], int(ContactStatus.NO_CONTACT))
     edge_pos = status == ContactStatus.EDGE
-    edges = [(int(i), int(pairs[sel[i]])) + tuple(labels[(int(i), int(sel[i]))]) for i in np.flatnonzero(edge_pos)]
+    edges = [(int(i), int(pairs[sel[i]])) + tuple(labels[(int(i), int(sel[i]))][:2]) for i in np.flatnonzero(edge_pos)]
     # ellipses at the selected contacts
     flat = np.arange(n) * P + np.maximum(sel, 0)
     nocon_or_edge = ~anyv | edge_pos
@@ -377,21 +378,16 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     dirs2 = np.einsum("mji,mkj->mki", R2[flat], dirs)
     for arr in (lam, axes_, dirs1, dirs2):
         arr[nocon_or_edge] = np.nan
-    # transfer points: where the pair in contact changes
-    transfers = []
-    for i in range(n - 1):
-        a, b = sel[i], sel[i + 1]
-        # a change of pair across an edge contact (status EDGE) is not a crossing of two surface contacts
-        if a >= 0 and b >= 0 and a != b and not (edge_pos[i] or edge_pos[i + 1]):
-            d0 = te2[i, b] - te2[i, a]
-            d1 = te2[i + 1, b] - te2[i + 1, a]
-            if np.isfinite(d0) and np.isfinite(d1) and max(abs(d0), abs(d1)) <= te_tie:
-                continue  # shared contact (tie), not a transfer
-            if np.isfinite(d0) and np.isfinite(d1) and d1 != d0:
-                f = min(max(-d0 / (d1 - d0), 0.0), 1.0)
-                transfers.append(phi1[i] + (phi1[i + 1] - phi1[i]) * f)
-            else:
-                transfers.append(0.5 * (phi1[i] + phi1[i + 1]))
+    # transfer points: where the pair in contact changes, at the exact crossing of the two pairs' TE curves
+    kinds = np.full((n, P), -1)
+    for (i, j), lab in labels.items():
+        kinds[i, j] = 2 * lab[3] + lab[2]
+
+    def te_of_phi(p2, k, phi):
+        return drive * (-(prob.gear_angle(p2, k) - phi2_mean) - ratio * (phi - phi1_mean))
+
+    transfers, transfer_te = exact_transfers(prob, phi1, sel, te2, x.reshape(n, P, 5), kinds, pairs, te_of_phi,
+                                             tol=tol, te_tie=te_tie)
 
     def rs(a, k=None):
         return a.reshape((n, P) + a.shape[1:])
@@ -402,6 +398,6 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         params1=rs(x[:, 0:2]), params2=rs(x[:, 2:4]), point1=rs(r1), normal1=rs(n1), point2=rs(r2), normal2=rs(n2),
         point_fixed=rs(pf), normal_fixed=rs(n1f), residual=rs(res), pair=sel, status=status,
         semi_axes=axes_, ellipse_dirs1=dirs1, ellipse_dirs2=dirs2, relative_curvatures=lam,
-        approach=float(approach), transfer_phi1=np.array(transfers), z1=z1, z2=z2,
+        approach=float(approach), transfer_phi1=np.asarray(transfers), transfer_te=np.asarray(transfer_te), z1=z1, z2=z2,
         shaft_angle=prob.shaft_angle, iterations=int(iters), edges=tuple(edges),
     )

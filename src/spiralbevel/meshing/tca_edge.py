@@ -13,7 +13,7 @@ surface contact solve the five equations
     n_B . t_A = 0,  t_A = R_A (r_A,u g_v - r_A,v g_u)/|.|     (1: tangency of the curve to B)
 
 (the same unknowns and assembly pose as the surface contact of :mod:`spiralbevel.meshing.contact_problem`). The
-Jacobian is by central differences, stacked into one batched evaluation per Newton iteration; the boundary
+Jacobian is by forward differences, stacked into one batched evaluation per Newton iteration; the boundary
 gradient (g_u, g_v) likewise. Edge solves are few (only pairs whose surface contact leaves a flank), so their cost
 is small next to the surface solve.
 """
@@ -117,13 +117,14 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
         if not a.size:
             break
         xa = x[a]
-        # centre and +-h along each unknown, one stacked evaluation (11 per system)
-        pert = np.concatenate([np.zeros((1, 5)), np.diag(hvec), -np.diag(hvec)], 0)  # (11, 5)
+        # centre and +h along each unknown, one stacked evaluation (6 per system; forward differences: the
+        # Jacobian only steers Newton, the residual is exact)
+        pert = np.concatenate([np.zeros((1, 5)), np.diag(hvec)], 0)  # (6, 5)
         xs = (xa[:, None, :] + pert[None]).reshape(-1, 5)
-        rep = lambda v: np.repeat(v, 11, axis=0)  # noqa: E731
-        Fs = _residual(prob, xs, rep(phi1_eff[a]), rep(member[a]), rep(edge[a])).reshape(len(a), 11, 5)
+        rep = lambda v: np.repeat(v, 6, axis=0)  # noqa: E731
+        Fs = _residual(prob, xs, rep(phi1_eff[a]), rep(member[a]), rep(edge[a])).reshape(len(a), 6, 5)
         F = Fs[:, 0]
-        J = np.swapaxes((Fs[:, 1:6] - Fs[:, 6:11]) / (2 * hvec)[None, :, None], 1, 2)  # (k, 5 eq, 5 unknowns)
+        J = np.swapaxes((Fs[:, 1:6] - F[:, None]) / hvec[None, :, None], 1, 2)  # (k, 5 eq, 5 unknowns)
         done = (np.max(np.abs(F[:, 0:3]), axis=1) < tol) & (np.abs(F[:, 3]) < 1e-12) & (np.abs(F[:, 4]) < 1e-9)
         bad = ~np.all(np.isfinite(F), axis=1) | ~np.all(np.isfinite(J), axis=(1, 2))
         conv[a[done & ~bad]] = True
@@ -174,7 +175,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     te_edge : (n, P) float, rad
         Their TE (NaN where none).
     label : dict
-        (i, j) -> (member "pinion"/"gear" whose boundary touches, boundary name).
+        (i, j) -> (member "pinion"/"gear" whose boundary touches, boundary name, member index 0/1, boundary index).
 
     Notes
     -----
@@ -286,4 +287,4 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         E = np.array([cand[k][1] for k in keys])
         new = try_solve(I, Jp, M, E, np.array([cand[k][2] for k in keys]))
         front = {(int(I[a]), int(Jp[a])) for a in np.flatnonzero(new) if leads(int(I[a]), int(Jp[a]))}
-    return x_edge, te_edge, {k: v[:2] for k, v in label.items()}
+    return x_edge, te_edge, label
