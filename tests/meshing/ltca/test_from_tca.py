@@ -286,14 +286,20 @@ def test_local_deformation_counted_once_hertz_at_a_single_pair_position(setup, f
     tca = s["tca"]
     i = len(tca.phi1) // 2
     j = int(tca.pair[i])
-    model = ltca_model(s["p"], s["g"], s["kin"], tca, pinion_grids=s["grids"][Member.PINION],
-                       gear_grids=s["grids"][Member.GEAR], cache_dir=fe_dir, grid=(41, 15))
-    pos = model.positions[i]
-    one = dataclasses.replace(model, positions=[ContactPosition(pos.pinion_angle, [
-        pc if q == j else None for q, pc in enumerate(pos.pairs)])])
-    r = one.run(200e3, approach_target=None)
-    p0, _ = hertz_peak_pressure(tca.relative_curvatures[i], r.pair_force[0, j], contact_modulus())
-    assert abs(r.max_pressure[0] / p0 - 1.0) < 0.05
+    peaks = []
+    for grid in ((41, 15), (81, 31)):
+        model = ltca_model(s["p"], s["g"], s["kin"], tca, pinion_grids=s["grids"][Member.PINION],
+                           gear_grids=s["grids"][Member.GEAR], cache_dir=fe_dir, grid=grid)
+        pos = model.positions[i]
+        one = dataclasses.replace(model, positions=[ContactPosition(pos.pinion_angle, [
+            pc if q == j else None for q, pc in enumerate(pos.pairs)])])
+        r = one.run(200e3, approach_target=None)
+        p0, _ = hertz_peak_pressure(tca.relative_curvatures[i], r.pair_force[0, j], contact_modulus())
+        assert abs(r.max_pressure[0] / p0 - 1.0) < 0.05
+        peaks.append(float(r.max_pressure[0]))
+    # the contact grid converges with the FE term on too (21 x 7 -> 41 x 15 -> 81 x 31: +2.3, +1.0, +2.6 % from
+    # Hertz): < 3 % between the two finest
+    assert abs(peaks[1] / peaks[0] - 1.0) < 0.03
     # the FE model does hold a local response of its own (what would be counted twice): at the loaded node it is a
     # sizeable share of the nodal flexibility
     for comp in (model.pinion_compliance, model.gear_compliance):
