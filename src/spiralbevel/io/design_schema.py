@@ -13,7 +13,7 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_valida
 from .angles import parse_angle_deg
 
 __all__ = ["Angle", "GearSetSpec", "DepthSpec", "FlankSpec", "ManufacturingSpec", "OutputSpec", "CutterSpec",
-           "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "SynthesisSpec", "LTCASpec",
+           "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "SynthesisSpec", "TCASpec", "LTCASpec",
            "CrowningSpec", "MisalignmentSpec", "RatingSpec", "DesignFile"]
 
 Angle = Annotated[float, BeforeValidator(parse_angle_deg)]
@@ -197,6 +197,14 @@ class CrowningSpec(_Model):
     misalignment: MisalignmentSpec = MisalignmentSpec()
 
 
+class TCASpec(_Model):
+    """Unloaded tooth contact analysis of a face-milled pair (both sides and the misalignment study)."""
+
+    positions: int = _f(41, ge=11, le=4001,
+                        description="pinion positions over one mesh cycle (transfer points are solved exactly "
+                        "between them)")
+
+
 class LTCASpec(_Model):
     """Loaded tooth contact analysis (seed 001 §4.3.2) of one side of a face-milled pair."""
 
@@ -285,6 +293,7 @@ class DesignFile(_Model):
     flank: FlankSpec = FlankSpec()
     face_milling: FaceMillingSpec = FaceMillingSpec()
     synthesis: Optional[SynthesisSpec] = None
+    tca: TCASpec = TCASpec()
     ltca: Optional[LTCASpec] = None
     crowning: Optional[CrowningSpec] = None
     rating: Optional[RatingSpec] = None

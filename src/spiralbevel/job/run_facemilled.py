@@ -33,8 +33,9 @@ def run_facemilled(spec, blank, out, steps, report, summary):
 
         from .tca import misalignment_sensitivity
 
-        tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids)
-        report["tca"]["misalignment_sensitivity"] = misalignment_sensitivity(blank, setups, "drive")
+        n_pos = spec.tca.positions
+        tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids, n_positions=n_pos)
+        report["tca"]["misalignment_sensitivity"] = misalignment_sensitivity(blank, setups, "drive", n_positions=n_pos)
         if cmc:
             from ..meshing.synthesis.cmc_design import te_summary
 
