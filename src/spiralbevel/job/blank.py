@@ -31,6 +31,7 @@ FIELD_PATHS = {
     "theta_f2": "gear_set.depth.dedendum_angles[1]",
     "theta_a2": "gear_set.depth.gear_addendum_dedendum_angles[0]",
     "a": "gear_set.hypoid_offset",
+    "f_alim": "gear_set.limit_pressure_angle_factor",
 }
 
 
@@ -47,6 +48,7 @@ def blank_input_from_design(spec: DesignFile):
         alpha_dC=r(g.coast_pressure_angle if g.coast_pressure_angle is not None else g.normal_pressure_angle),
         c_ham=d.mean_addendum_factor, k_d=d.depth_factor, k_c=d.clearance_factor, k_t=d.thickness_factor,
         jen=d.backlash if d.backlash > 0 else None, taper=d.taper, a=g.hypoid_offset,
+        f_alim=g.limit_pressure_angle_factor,
     )
     if d.taper == "given":
         if d.dedendum_angles is not None:
