@@ -8,9 +8,10 @@ alpha_nC, Re2, Ri2, mmn, hmw, c, ham1, ham2, hfm1, hfm2, delta_a1, delta_f1, del
 
 Verified only by a second, independent computation: the pitch point (delta1, beta_m2, Rm1, zeta_m, t_zm1, t_zm2)
 by a vector model of two cones touching at one point with the relative velocity along the tooth trace
-(:func:`_pitch_point_model`); the zero-offset limit of the pitch cones against Method 0 over several designs; the
+(:func:`_pitch_point_model`); the pinion face and root cones (delta_a1, delta_f1, t_zF1, t_zR1) by the 3-D distance
+of skew cones, which must equal the clearance; the zero-offset limit of the pitch cones against Method 0 over several designs; the
 pinion face angle at vanishing offset against uniform clearance. Not verified by either: the pinion face width,
-heel and toe spiral angles, apexes and thickness of a hypoid (the standard's formulas, no published figure at hand);
+heel and toe spiral angles, the whole depth h_t1 and the thickness of a hypoid (the standard's formulas, no published figure at hand);
 the root/face-plane auxiliary angle φ for Σ != 90° (Sample 2 has Σ = 90°, where φ = 0).
 """
 
@@ -142,6 +143,36 @@ def test_pinion_cones_tend_to_uniform_clearance(z1, z2, sig, de2, b2, beta, rc0)
                                           taper="standard", a=1e-4))
     assert bl.theta_a1 == pytest.approx(bl.theta_f2, abs=1e-6)
     assert bl.theta_f1 == pytest.approx(bl.theta_a2, abs=1e-6)
+
+
+def _min_distance_to_wheel_cone(bl, pinion_angle, pinion_apex, wheel_angle, wheel_apex):
+    """Smallest signed distance (outward from the wheel) of a pinion cone (axis +x through (0, a, 0), apex at
+    x = −t_z beyond the crossing point) from a wheel cone (axis z, apex at z = t_z), over pinion points within ±30 %
+    of Rm1 along the generator; Nelder-Mead from 12 azimuths."""
+    from scipy.optimize import minimize
+
+    def dist(q):
+        length = bl.Rm1 * (1.0 + 0.3 * math.tanh(q[0]))
+        x = -pinion_apex + length * math.cos(pinion_angle)
+        y = bl.a + length * math.sin(pinion_angle) * math.cos(q[1])
+        z = length * math.sin(pinion_angle) * math.sin(q[1])
+        return math.hypot(x, y) * math.cos(wheel_angle) + (z - wheel_apex) * math.sin(wheel_angle)
+
+    opts = dict(xatol=1e-12, fatol=1e-15, maxiter=8000)
+    return min(minimize(dist, [0.0, t], method="Nelder-Mead", options=opts).fun
+               for t in np.linspace(-math.pi, math.pi, 12))
+
+
+@pytest.mark.parametrize("kw", [{}, {"a": 25.0}, {"a": -15.0}, {"taper": "standard", "theta_a2": None,
+                                                                "theta_f2": None}])
+def test_pinion_face_and_root_cones_clear_the_wheel_cones_by_c(kw):
+    """Independent check of delta_a1, t_zF1, delta_f1, t_zR1 (and so zeta_R, zeta_o): in 3-D the pinion face cone
+    touches the wheel root cone offset by the clearance c, and the pinion root cone the wheel face cone, i.e. the
+    smallest distance between the skew cones is c (to the optimizer's 1e-12 mm)."""
+    bl = _quiet(compute_blank, BlankInput(**{**SAMPLE2, **kw}))
+    face = _min_distance_to_wheel_cone(bl, bl.delta_a1, bl.tzF1, bl.delta_f2, bl.tzR2)
+    root = _min_distance_to_wheel_cone(bl, bl.delta_f1, bl.tzR1, bl.delta_a2, bl.tzF2)
+    assert face == pytest.approx(bl.c, abs=1e-10) and root == pytest.approx(bl.c, abs=1e-10)
 
 
 def test_offset_sign_follows_iso_b3():

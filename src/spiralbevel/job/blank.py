@@ -72,6 +72,28 @@ def blank_from_design(spec: DesignFile):
         raise _renamed(err) from err
 
 
+def require_no_offset(blank, command: str) -> None:
+    """Stop a command that builds flanks when the blank is a hypoid (ISO 23509 Method 1 dimension sheet only).
+
+    Parameters
+    ----------
+    blank : BevelBlank
+        Computed blank.
+    command : str
+        The command's name for the message (e.g. ``"spiralbevel run"``).
+
+    Raises
+    ------
+    DesignError
+        Naming ``gear_set.hypoid_offset`` when a != 0: machine settings, generation and TCA take no offset yet.
+    """
+    if blank.a != 0.0:
+        raise DesignError.single(
+            "gear_set.hypoid_offset", blank.a, f"a = 0 ({command} builds spiral bevel flanks only)", "mm",
+            "the hypoid dimension sheet (ISO 23509 Method 1) is computed: see 'spiralbevel blank'; generation of "
+            "hypoid flanks is not supported yet")
+
+
 def _renamed(err: DesignError) -> DesignError:
     problems = [Problem(_path(p.field), p.value, p.allowed, p.unit,
                         "" if p.reason.startswith("given in radians") else p.reason) for p in err.problems]

@@ -8,8 +8,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..io.design_schema import DesignFile
-from ..errors import DesignError
-from .blank import blank_from_design
+from .blank import blank_from_design, require_no_offset
 from .rating import rating_report
 from .progress import Steps
 
@@ -53,11 +52,7 @@ def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
         tmp = Path(tmp)
         with steps.step("blank geometry (ISO 23509)"):
             blank = blank_from_design(spec)
-            if blank.a != 0.0:  # ISO 23509 Method 1 blank only: no machine settings, generation or TCA with offset
-                raise DesignError.single(
-                    "gear_set.hypoid_offset", spec.gear_set.hypoid_offset, "a = 0 (spiralbevel run builds spiral bevel flanks only)", "mm",
-                    "the hypoid dimension sheet (ISO 23509 Method 1) is computed: see 'spiralbevel blank'; "
-                    "generation of hypoid flanks is not supported yet")
+            require_no_offset(blank, "spiralbevel run")
         report = {
             "spiralbevel_version": __version__,
             "title": spec.title,
