@@ -221,3 +221,28 @@ def test_cli_blank_shows_the_hypoid_sheet_and_run_stops_after_it(tmp_path):
     text = " ".join(res.output.split())
     assert "gear_set.hypoid_offset" in text and "generation of hypoid flanks is not supported yet" in text
     assert "Traceback" not in res.output and not (tmp_path / "out").exists()
+
+
+def test_random_hypoid_data_give_a_sheet_or_a_design_error():
+    """Bad hypoid data never raise a bare exception or give a non-finite figure (60 random designs, both offset
+    signs, Sigma 75-100 deg, all computed tapers)."""
+    from spiralbevel.errors import DesignError
+
+    rng = np.random.default_rng(7)
+    ok = 0
+    for _ in range(60):
+        z1 = int(rng.integers(5, 21))
+        de2 = float(rng.uniform(80.0, 400.0))
+        kw = dict(z1=z1, z2=int(rng.integers(z1, 61)), de2=de2, b=float(rng.uniform(0.05, 0.45)) * de2 / 2,
+                  beta_m=R(float(rng.uniform(5.0, 60.0))), rc0=float(rng.uniform(20.0, 300.0)),
+                  a=float(rng.uniform(-0.49, 0.49)) * de2, shaft_angle=R(float(rng.choice([75.0, 90.0, 100.0]))),
+                  taper=str(rng.choice(["standard", "duplex", "trl", "uniform"])))
+        try:
+            bl = _quiet(compute_blank, BlankInput(**kw))
+        except DesignError as err:
+            assert err.problems and all(p.field for p in err.problems)
+            continue
+        ok += 1
+        for k, v in bl.to_dict().items():
+            assert not isinstance(v, float) or math.isfinite(v) or k in ("tzR1", "tzR2", "dvn2", "hlim2"), (k, kw)
+    assert ok >= 20  # most random designs are valid hypoids

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 
-from ..errors import GeometryError, Problem
+from ..errors import DesignError, GeometryError, Problem
 from .blank_dimensions import member_dimensions
 from .blank_hypoid import hypoid_offset_angles, hypoid_pitch_cone
 from .blank_input import BlankInput
@@ -44,6 +44,25 @@ def _spiral(r, rm2, beta_m2, rc0, sym):
 
 
 def hypoid_quantities(inp: BlankInput) -> dict:
+    """Dimension-sheet quantities of a hypoid pair (a != 0) before the tooth thickness; see :func:`_quantities`.
+
+    Raises
+    ------
+    GeometryError
+        Naming ``a`` when a formula of Method 1 is not defined for these data (an inverse sine or tangent out of
+        range: the offset is too large for the wheel, or the face too wide), never a bare ``ValueError``.
+    """
+    try:
+        return _quantities(inp)
+    except DesignError:
+        raise
+    except (ValueError, ZeroDivisionError, OverflowError) as err:
+        raise GeometryError([Problem("a", inp.a, "an offset for which the ISO 23509 Method 1 formulas are defined",
+                                     "mm", f"the hypoid geometry has no solution for these data ({err}); reduce the "
+                                     "offset, the face width or the spiral angle")]) from None
+
+
+def _quantities(inp: BlankInput) -> dict:
     """Dimension-sheet quantities of a hypoid pair (a != 0) before the tooth thickness.
 
     Parameters
