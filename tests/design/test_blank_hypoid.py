@@ -216,6 +216,7 @@ def test_cli_blank_shows_the_hypoid_sheet_and_run_stops_after_it(tmp_path):
     assert "Method 1" in sheet["method"]
     assert sheet["pair"]["zeta_mp"] == pytest.approx(PUBLISHED_ANGLES["zeta_mp"], abs=ANG_TOL)
     assert sheet["pinion"]["delta_a1"] == pytest.approx(PUBLISHED_ANGLES["delta_a1"], abs=ANG_TOL)
+    assert sheet["pair"]["alpha_nD"] == pytest.approx(PUBLISHED_ANGLES["alpha_nD"], abs=ANG_TOL)  # f_alim = 1 read
     res = runner.invoke(app, ["run", str(f), "-o", str(tmp_path / "out")])
     assert res.exit_code == 2
     text = " ".join(res.output.split())
