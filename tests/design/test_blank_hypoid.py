@@ -247,3 +247,14 @@ def test_random_hypoid_data_give_a_sheet_or_a_design_error():
         for k, v in bl.to_dict().items():
             assert not isinstance(v, float) or math.isfinite(v) or k in ("tzR1", "tzR2", "dvn2", "hlim2"), (k, kw)
     assert ok >= 20  # most random designs are valid hypoids
+
+
+@pytest.mark.parametrize("method,offset,ok", [(1, 15.0, True), (0, 15.0, False), (1, 0.0, False), (2, 15.0, False),
+                                              (0, 0.0, True)])
+def test_blank_method_key_must_fit_the_offset(tmp_path, method, offset, ok):
+    f = tmp_path / "m.toml"
+    f.write_text(SAMPLE2_TOML.replace("hypoid_offset = 15.0", f"hypoid_offset = {offset}\nblank_method = {method}"))
+    res = CliRunner().invoke(app, ["blank", str(f)])
+    assert res.exit_code == (0 if ok else 2), res.output
+    if not ok:
+        assert "gear_set.blank_method" in res.output and "Traceback" not in res.output

@@ -50,6 +50,7 @@ def blank_input_from_design(spec: DesignFile):
         jen=d.backlash if d.backlash > 0 else None, taper=d.taper, a=g.hypoid_offset,
         f_alim=g.limit_pressure_angle_factor,
     )
+    _check_method(g.blank_method, g.hypoid_offset)
     if d.taper == "given":
         if d.dedendum_angles is not None:
             kw.update(theta_f1=r(d.dedendum_angles[0]), theta_f2=r(d.dedendum_angles[1]))
@@ -70,6 +71,19 @@ def blank_from_design(spec: DesignFile):
         return compute_blank(inp)
     except DesignError as err:
         raise _renamed(err) from err
+
+
+def _check_method(method, a: float) -> None:
+    """The ISO 23509 method a design file asks for must fit its offset (Method 0: a = 0; Method 1: a != 0)."""
+    if method is None or (method == 0 and a == 0.0) or (method == 1 and a != 0.0):
+        return
+    if method in (2, 3):
+        allowed, reason = "0 or 1", "ISO 23509 Methods 2 (Oerlikon) and 3 (Klingelnberg) are not implemented"
+    elif method == 0:
+        allowed, reason = "1 for a hypoid offset", f"Method 0 has no offset (gear_set.hypoid_offset = {a:g} mm)"
+    else:
+        allowed, reason = "0 without offset", "Method 1 needs a hypoid offset (gear_set.hypoid_offset = 0)"
+    raise DesignError.single("gear_set.blank_method", method, allowed, "-", reason)
 
 
 def require_no_offset(blank, command: str) -> None:
