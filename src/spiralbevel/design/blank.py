@@ -1,4 +1,4 @@
-"""Blank geometry of a spiral bevel gear pair without offset: ISO 23509 Method 0, face milling.
+"""Blank geometry of a bevel gear pair, face milling: ISO 23509 Method 0 (a = 0) and Method 1 (Gleason, hypoid).
 
 :func:`compute_blank` turns a :class:`~spiralbevel.design.blank_input.BlankInput` into a
 :class:`~spiralbevel.design.blank_result.BevelBlank` (the "dimension sheet"), runs the checks of
@@ -66,7 +66,11 @@ def _spiral_angles(inp: BlankInput, rm: float, re: tuple[float, float], ri: tupl
 
 
 def compute_blank(inp: BlankInput) -> BevelBlank:
-    """Compute the blank dimensions of a spiral bevel pair without offset (ISO 23509 Method 0, face milling).
+    """Compute the blank dimensions of a bevel pair (ISO 23509, face milling): Method 0 for a = 0, Method 1 otherwise.
+
+    A hypoid (a != 0) takes its pitch cones, spiral angles, cones and face widths from
+    :func:`~spiralbevel.design.blank_hypoid_dims.hypoid_quantities`; thickness, checks and top lands below are shared,
+    with the wheel's Rm2, βm2 where the standard uses them and each member's own Rm, βm for its virtual gear.
 
     Parameters
     ----------

@@ -35,7 +35,7 @@ QUANTITIES: tuple[tuple[str, str, str, str], ...] = (
     ("be", "face width from the mean point to the heel (outer end)", "length", "member"),
     ("bi", "face width from the mean point to the toe (inner end)", "length", "member"),
     ("Re", "outer cone distance", "length", "member"),
-    ("Rm", "mean cone distance (design point)", "length", "pair"),
+    ("Rm", "mean cone distance (design point; Rm2 for a hypoid)", "length", "pair"),
     ("Rm", "mean cone distance", "length", "member"),
     ("Ri", "inner cone distance", "length", "member"),
     ("de", "outer pitch diameter", "length", "member"),
