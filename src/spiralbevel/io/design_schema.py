@@ -66,7 +66,13 @@ class GearSetSpec(_Model):
     mean_spiral_angle: Angle = _f(..., unit="deg", gt=0.0, lt=60.0, description="beta_m (magnitude)")
     pinion_hand: Literal["RH", "LH"] = _f("RH", description="hand of spiral of the pinion; the gear is opposite")
     cutter_radius: float = _f(114.3, unit="mm", gt=0.0, le=1000.0, description="r_c0 nominal cutter radius")
-    hypoid_offset: float = _f(0.0, unit="mm", description="a; only 0 is supported yet")
+    hypoid_offset: float = _f(0.0, unit="mm", ge=-1000.0, le=1000.0, description="a, ISO 23509 sign: > 0 when the "
+                               "pinion offset follows the wheel's hand of spiral; != 0: Method 1 (Gleason) blank only")
+    blank_method: Optional[Literal[0, 1, 2, 3]] = _f(
+        None, description="ISO 23509 pitch-cone method: 0 (no offset), 1 (Gleason, hypoid); 2 and 3 (Oerlikon, "
+        "Klingelnberg) are not implemented; default from hypoid_offset (0 -> 0, else 1)")
+    limit_pressure_angle_factor: float = _f(0.0, ge=0.0, le=1.0, description="f_alim: share of the limit pressure "
+                                            "angle taken into the generated flank angles (hypoid, ISO 23509)")
     depth: DepthSpec = DepthSpec()
 
     @model_validator(mode="after")
