@@ -61,4 +61,6 @@ def test_mismatched_pair_is_less_sensitive_to_offset_than_the_line_contact_pair(
     assert row.mismatched_growth < row.line_growth  # crowned pair: the parabola moves, its level does not grow
     # cross-check of the mismatched row against the surface TCA of the same misaligned pair
     rm = solve_tca(c1, c2, kin, phi1_mean=phi1m, n_positions=N, start=start, misalignment=mis)
-    assert abs(row.mismatched_ptp - rm.peak_to_peak) < 0.05 * ARCSEC
+    # over the same sampled positions: TCAResult.peak_to_peak also holds the exact transfer points, which the
+    # first-touch study does not solve
+    assert abs(row.mismatched_ptp - np.ptp(rm.te)) < 0.05 * ARCSEC
