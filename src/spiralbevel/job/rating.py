@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..conventions import Member, Side
 from ..errors import DesignError, Problem
 from ..io.design_schema import DesignFile
@@ -106,3 +108,33 @@ def rating_ltca_report(spec: DesignFile, blank, report: dict, summary, ltca_resu
         "sigma_H0": "N/mm^2", "sigma_H": "N/mm^2", "p_max/sigma_H0": "-", "p_max/sigma_H": "-"}}
     summary.highlights.append(f"LTCA peak pressure {cmp['p_max_ltca']:.0f} N/mm^2 = {cmp['p_max/sigma_H0']:.2f} "
                               f"sigma_H0, {cmp['p_max/sigma_H']:.2f} sigma_H (ISO 10300 B1 at the LTCA torque)")
+
+
+#: fillet rows of the flank grids of the FE root-stress model (from the cutter-tip root line to the blade junction)
+FE_ROOT_FILLET_ROWS = 4
+
+
+def fe_root_stress_from_job(spec: DesignFile, blank, setups, ltca_result, fe_options=None):
+    """FE root stress of pinion and gear (:func:`~spiralbevel.rating.fe_root_stress.fe_root_stress`) under the
+    contact forces of the job's LTCA: the flank grids of the LTCA's FE model (``[ltca] flank_grid``) with
+    ``FE_ROOT_FILLET_ROWS`` fillet rows below, in the same (phased) member frames."""
+    from ..meshing.generated_surface import phased_for_pair
+    from ..rating.fe_root_stress import fe_root_stress
+    from .facemilled import tooth_rotation
+    from .ltca import _tooth_grids
+    from .tca import SIDES
+
+    lt = spec.ltca
+    s1, s2 = SIDES[lt.side]
+    c1, c2 = phased_for_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank)
+    nf, npf = lt.flank_grid
+    # the last fillet row and the first blade row of ToothFlank.grid coincide: keep one of them
+    grids = {k: np.delete(st.flank.grid(nf, npf, n_fillet=FE_ROOT_FILLET_ROWS, curvature=False).points,
+                          FE_ROOT_FILLET_ROWS, axis=1) for k, st in setups.items()}
+    pin = _tooth_grids(grids, Member.PINION, s1, c1.rotation, tooth_rotation(blank, setups, Member.PINION))
+    gear = _tooth_grids(grids, Member.GEAR, s2, c2.rotation, tooth_rotation(blank, setups, Member.GEAR))
+    # the LTCA names its pairs "pair %+d" after the TCA's tooth-pair index k
+    pairs = [int(name.split()[-1]) for name in ltca_result.pair_names]
+    return fe_root_stress(ltca_result, pin, gear, blank.z1, blank.z2, pairs=pairs, sides=(s1.value, s2.value),
+                          n_fillet=FE_ROOT_FILLET_ROWS, youngs_modulus=lt.youngs_modulus,
+                          poisson_ratio=lt.poisson_ratio, fe_options=fe_options)
