@@ -120,7 +120,7 @@ def _rot(a):
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def contact_load_cases(mesh, side, points, pair_of_point, force, teeth_of_pairs, tol=0.1):
+def contact_load_cases(mesh, side, points, pair_of_point, force, teeth_of_pairs, tol=0.5):
     """Vertex forces of the load cases that follow tooth 0 through its engagement.
 
     Parameters
@@ -138,7 +138,10 @@ def contact_load_cases(mesh, side, points, pair_of_point, force, teeth_of_pairs,
     teeth_of_pairs : (n_pairs,) int
         Segment tooth of each pair (pinion: k, gear: -k for pair k of the TCA).
     tol : float, mm
-        Largest distance of a loaded point from the flank grid (catches frame or side mix-ups).
+        Largest distance of a loaded point from the flank grid (catches frame or side mix-ups, which put the points
+        millimetres away). The LTCA's potential contact points lie in the tangent plane of each contact, off the
+        curved flank by about s^2 k / 2 at a distance s from the contact point; each force acts at the foot of its
+        point on the flank grid, as in the LTCA compliance.
 
     Returns
     -------
@@ -230,7 +233,7 @@ def _arc(points):
 
 def member_root_stress(member, convex, concave, z, side, n_fillet, points, pair_of_point, force, teeth_of_pairs,
                        pinion_angles, *, youngs_modulus=206000.0, poisson_ratio=0.3, fe_options=None, order=2,
-                       tol=0.1) -> MemberRootStress:
+                       tol=0.5) -> MemberRootStress:
     """Maximum principal stress along the root fillet of one member under the LTCA contact forces.
 
     Parameters
@@ -256,6 +259,7 @@ def member_root_stress(member, convex, concave, z, side, n_fillet, points, pair_
         Overrides of ``STRESS_FE_DEFAULTS``.
     order : {1, 2}
     tol : float, mm
+        See :func:`contact_load_cases`.
 
     Returns
     -------
@@ -305,7 +309,7 @@ def member_root_stress(member, convex, concave, z, side, n_fillet, points, pair_
 
 def fe_root_stress(ltca, pinion_grids, gear_grids, z1: int, z2: int, *, pairs, sides=("concave", "convex"),
                    n_fillet: int, youngs_modulus: float = 206000.0, poisson_ratio: float = 0.3, fe_options=None,
-                   order: int = 2, tol: float = 0.1) -> dict:
+                   order: int = 2, tol: float = 0.5) -> dict:
     """Root stress of pinion and gear under the contact forces of an LTCA.
 
     Parameters
@@ -327,6 +331,7 @@ def fe_root_stress(ltca, pinion_grids, gear_grids, z1: int, z2: int, *, pairs, s
         Overrides of ``STRESS_FE_DEFAULTS``.
     order : {1, 2}
     tol : float, mm
+        See :func:`contact_load_cases`.
 
     Returns
     -------
