@@ -152,3 +152,29 @@ def test_root_stress_follows_the_load_along_the_face():
         assert np.allclose(b.sigma1[sd], a.sigma1[sd], rtol=0, atol=1e-9 * a.sigma1_max)
     s = a.summary()
     assert s["sigma1_max"] == a.sigma1_max and s["pinion_angle_deg"] == 0.0
+
+
+def test_points_on_another_tooth_are_brought_back_and_strays_rejected():
+    from spiralbevel.errors import DesignError
+
+    mesh = _segment()
+    P = np.array([[X0 + 2.3, -H / 2, 1.7], [X0 + 3.1, -H / 2, 4.4]])
+    args = ([np.array([0, 0])], [np.array([30.0, 50.0])], [0])
+    F0, _ = contact_load_cases(mesh, "convex", [P], *args)
+    # the same points left on tooth +1 (one pitch turned): the same loads on tooth 0
+    F1, _ = contact_load_cases(mesh, "convex", [P @ _turn(mesh.pitch_angle).T], *args)
+    assert np.allclose(F1, F0, atol=1e-9)
+    # points on the other flank of the tooth (a side mix-up, h = 2 mm away) are an error naming the key
+    with pytest.raises(DesignError, match="ltca points"):
+        contact_load_cases(mesh, "convex", [P + [0.0, H, 0.0]], *args)
+
+
+def test_locate_fallback_finds_the_foot():
+    from spiralbevel.rating.fe_root_stress import locate
+
+    lo, _ = _block(2, length=4.0, width=6.0, rows=9)  # plane y = -h/2, cells 3 mm x 0.5 mm
+    P = np.array([[X0 + 0.5 * 2 + 0.5 * 0.6, -H / 2 - 0.2, 3.0 * 0.3]])  # cell (0, 2), xi 0.3, eta 0.6, 0.2 off
+    for retry in (1.0, 0.0):  # Gauss-Newton only; the lattice search forced
+        i, j, xi, eta, d = locate(lo, P, retry=retry)
+        assert (i[0], j[0]) == (0, 2) and d[0] == pytest.approx(0.2, abs=1e-9)
+        assert xi[0] == pytest.approx(0.3, abs=1 / 80) and eta[0] == pytest.approx(0.6, abs=1 / 80)

@@ -138,10 +138,11 @@ def contact_load_cases(mesh, side, points, pair_of_point, force, teeth_of_pairs,
     teeth_of_pairs : (n_pairs,) int
         Segment tooth of each pair (pinion: k, gear: -k for pair k of the TCA).
     tol : float, mm
-        Largest distance of a loaded point from the flank grid (catches frame or side mix-ups, which put the points
-        millimetres away). The LTCA's potential contact points lie in the tangent plane of each contact, off the
-        curved flank by about s^2 k / 2 at a distance s from the contact point; each force acts at the foot of its
-        point on the flank grid, as in the LTCA compliance.
+        Largest distance from the flank grid of the most loaded point of each pair (catches frame or side mix-ups,
+        which put the points millimetres away). The LTCA's potential contact points lie in the tangent plane of each
+        contact, off the curved flank by about s^2 k / 2 at a distance s from the contact point (over a millimetre at
+        the ends of a long contact): each force acts at the foot of its point on the flank grid, as in the LTCA
+        compliance.
 
     Returns
     -------
@@ -149,8 +150,6 @@ def contact_load_cases(mesh, side, points, pair_of_point, force, teeth_of_pairs,
     cases : list of (int, int)
         (mesh position, pair j in the role of tooth 0) of every case.
     """
-    from ..meshing.ltca.locate import locate_on_grid
-
     teeth = list(mesh.teeth)
     other = "concave" if side == "convex" else "convex"
     pitch = mesh.pitch_angle
@@ -165,8 +164,8 @@ def contact_load_cases(mesh, side, points, pair_of_point, force, teeth_of_pairs,
         if not live.any():
             continue
         P, pr, f = P[live], pr[live], f[live]
-        P = _on_reference_tooth(grid0, P, pr, pitch, side, tol)
-        i, j, xi, eta, _ = locate_on_grid(grid0, P)
+        P = _on_reference_tooth(grid0, P, pr, f, pitch, side, tol)
+        i, j, xi, eta, _ = locate(grid0, P)
         # force on the reference tooth, bilinear shares on the four cell vertices, into the tooth
         parts = []
         for di, dj, wgt in ((0, 0, (1 - xi) * (1 - eta)), (1, 0, xi * (1 - eta)), (0, 1, (1 - xi) * eta),
@@ -192,25 +191,52 @@ def contact_load_cases(mesh, side, points, pair_of_point, force, teeth_of_pairs,
     return np.stack(forces), cases
 
 
-def _foot_distance(grid, P):
+def _bilinear(grid, i, j, xi, eta):
+    x, e = np.asarray(xi)[..., None], np.asarray(eta)[..., None]
+    return ((1 - x) * (1 - e) * grid[i, j] + x * (1 - e) * grid[i + 1, j] + (1 - x) * e * grid[i, j + 1]
+            + x * e * grid[i + 1, j + 1])
+
+
+def locate(grid, P, retry=0.05):
+    """Cell (i, j) and bilinear coordinates (xi, eta) of the foot of points on a flank grid, and the distance (mm).
+
+    :func:`~spiralbevel.meshing.ltca.locate.locate_on_grid` (Gauss-Newton) first; a point whose foot is more than
+    ``retry`` mm away (a Gauss-Newton step that did not converge) is located again by a search over a 41 x 41 lattice
+    of bilinear coordinates in the four cells around its nearest grid vertex (the foot to 1/40 of a cell).
+    """
     from ..meshing.ltca.locate import locate_on_grid
 
     i, j, xi, eta, _ = locate_on_grid(grid, P)
-    x, e = xi[:, None], eta[:, None]
-    foot = ((1 - x) * (1 - e) * grid[i, j] + x * (1 - e) * grid[i + 1, j] + (1 - x) * e * grid[i, j + 1]
-            + x * e * grid[i + 1, j + 1])
-    return np.linalg.norm(foot - P, axis=1)
+    d = np.linalg.norm(_bilinear(grid, i, j, xi, eta) - P, axis=1)
+    n0, n1 = grid.shape[0] - 1, grid.shape[1] - 1
+    t = np.linspace(0.0, 1.0, 41)
+    XI, ETA = np.meshgrid(t, t, indexing="ij")
+    for q in np.flatnonzero(d > retry):
+        a, b = np.unravel_index(int(np.argmin(np.linalg.norm(grid - P[q], axis=-1))), grid.shape[:2])
+        for ci in range(max(0, a - 1), min(n0, a + 1)):
+            for cj in range(max(0, b - 1), min(n1, b + 1)):
+                dd = np.linalg.norm(_bilinear(grid, ci, cj, XI, ETA) - P[q], axis=-1)
+                k = np.unravel_index(int(np.argmin(dd)), dd.shape)
+                if dd[k] < d[q]:
+                    i[q], j[q], xi[q], eta[q], d[q] = ci, cj, XI[k], ETA[k], dd[k]
+    return i, j, xi, eta, d
 
 
-def _on_reference_tooth(grid0, P, pr, pitch, side, tol):
-    """The points of every pair turned by the whole number of pitches that puts them on the reference tooth's flank
-    (the LTCA result gives them on the reference tooth; this also accepts points left on another tooth)."""
+def _foot_distance(grid, P):
+    return locate(grid, P)[4]
+
+
+def _on_reference_tooth(grid0, P, pr, f, pitch, side, tol):
+    """The points of every pair turned by the whole number of pitches that puts the pair's most loaded point (the
+    nearest to its contact centre, on the flank to within the tangent plane's sag) on the reference tooth's flank (the
+    LTCA result gives them on the reference tooth; this also accepts points left on another tooth)."""
     out = P.copy()
     for jp in np.unique(pr):
         sel = pr == jp
+        top = P[sel][np.argmax(f[sel])][None]
         best = (np.inf, 0)
         for t in range(-3, 4):
-            d = float(np.max(_foot_distance(grid0, P[sel] @ _rot(-t * pitch).T)))
+            d = float(_foot_distance(grid0, top @ _rot(-t * pitch).T)[0])
             best = min(best, (d, t))
         if best[0] > tol:
             raise DesignError.single("ltca points", f"{best[0]:.3f} mm from the {side} flank grid", f"<= {tol} mm",
