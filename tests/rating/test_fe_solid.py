@@ -170,7 +170,7 @@ def test_points_on_another_tooth_are_brought_back_and_strays_rejected():
 
 
 def test_locate_fallback_finds_the_foot():
-    from spiralbevel.rating.fe_root_stress import locate
+    from spiralbevel.rating.fe_loads import locate
 
     lo, _ = _block(2, length=4.0, width=6.0, rows=9)  # plane y = -h/2, cells 3 mm x 0.5 mm
     P = np.array([[X0 + 0.5 * 2 + 0.5 * 0.6, -H / 2 - 0.2, 3.0 * 0.3]])  # cell (0, 2), xi 0.3, eta 0.6, 0.2 off
