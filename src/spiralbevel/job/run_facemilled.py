@@ -71,7 +71,7 @@ def run_facemilled(spec, blank, out, steps, report, summary):
                     f"arcsec, max pressure {lt['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
             from .rating import rating_ltca_report
 
-            rating_ltca_report(spec, blank, report, summary, ltca_result)
+            rating_ltca_report(spec, blank, report, summary, ltca_result, setups=setups, out=out, plots=o.plots)
     with steps.step("ease-off and measurement grids"):
         from .inspection import easeoff_maps, measurement_files
 
