@@ -11,7 +11,8 @@ Steps (seed 001 §2.2, §4.3, §5; equations as decoded in shared/reference/ERRA
    solved so that the TE equals the CMC (Eq. (17), absolute tolerance 1e-9 rad); E_m1(psi_c1) is interpolated between
    the nodes (natural cubic spline; "linear" as in the paper is available with --interpolation linear, without TCA);
 5. TCA of three tooth pairs of the final pair, in the paper's model (straight blades continued to the tip, Eq. (16))
-   and with the real edge radii (where the contact of one pair leaves the active flanks before the transfer).
+   and with the real edge radii (where the contact of one pair runs onto the gear's top edge before the transfer:
+   the edge contact of that edge against the pinion flank).
 
 Run:  python examples/seed001_cmc.py [OUTDIR] [--figures docs/figures] [--interpolation spline]
 Writes OUTDIR/seed001_cmc.json (default examples/out/) and the PNG figures (Figures 5-8 of the paper).
@@ -104,15 +105,23 @@ def figures(design, real, outdir: Path):
     # Figure 7: TE of three pairs by TCA, with the control points
     fig, ax = plt.subplots(figsize=(6, 3.4))
     xt = np.degrees(tca.phi1 - tca.phi1_mean)
-    top = np.nanmax(tca.te)
+    top = tca.te_max
     for kk, k in enumerate(tca.pairs):
         ax.plot(xt, (tca.te_pairs[:, kk] - top) / ARCSEC, lw=1.2, label=f"pair {k:+d}")
+    ax.plot(np.degrees(tca.transfer_phi1 - tca.phi1_mean), (tca.transfer_te - top) / ARCSEC, "kv", ms=5,
+            label="transfer (exact)")
+    if real is not None:
+        xr = np.degrees(real.phi1 - real.phi1_mean)
+        ax.plot(xr, (real.te - real.te_max) / ARCSEC, color="0.5", lw=1.0, ls=":", label="real edge radii")
+        e = real.edge_contact
+        ax.plot(xr[e], (real.te[e] - real.te_max) / ARCSEC, "x", color="0.3", ms=4, label="edge contact (gear top)")
     ax.plot(np.degrees(mp.control_points), (mp.target + c0 - float(np.nanmax(cmc.envelope(tca.phi1, T)))) / ARCSEC
             - (top - np.nanmax(tca.te)) / ARCSEC, "ko", ms=4, label="control points")
     ax.plot(xt, (cmc.envelope(tca.phi1, T) - np.nanmax(cmc.envelope(tca.phi1, T))) / ARCSEC, "k--", lw=0.8,
             label="predesigned CMC")
-    lo = (np.nanmin(tca.te) - top) / ARCSEC
-    ax.set_ylim(min(lo, -3.0) - 1.0, 0.5)
+    lo = (tca.te_min - top) / ARCSEC
+    lo_real = (real.te_min - real.te_max) / ARCSEC if real is not None else lo
+    ax.set_ylim(min(lo, lo_real, -3.0) - 1.0, 0.5)
     ax.set_xlabel("pinion rotation phi1 - phi10 (deg)")
     ax.set_ylabel("TE (arcsec)")
     ax.set_title(f"TCA: max TE {lo:.4f} arcsec (paper {PAPER_MAX_TE}, design -3)")
@@ -168,9 +177,13 @@ def main(argv=None):
               f"-3, paper {PAPER_MAX_TE}; deviation from the CMC on the controlled range "
               f"{t['controlled_range_deviation_arcsec']:.4f} arcsec")
         tr = s["tca_real_flanks"]
-        print(f"max TE (real edge radii, surface contacts of the real flanks) {tr['max_transmission_error_arcsec']:.4f}"
-              f" arcsec ({tr['edge_contact_positions']} of {tr['positions']} positions with edge contact, not solved: "
-              f"no TE there)")
+        edges = sorted({f"{m} {e}" for _, _, m, e in real.edges})
+        where = np.degrees(real.phi1[real.edge_contact]) if np.any(real.edge_contact) else np.zeros(0)
+        print(f"max TE (real edge radii, surface and edge contacts of the real flanks) "
+              f"{tr['max_transmission_error_arcsec']:.4f} arcsec; edge contact ({', '.join(edges) or 'none'}) at "
+              f"{tr['edge_contact_positions']} of {tr['positions']} positions"
+              + (f", pinion rotation {where.min():.2f} to {where.max():.2f} deg" if where.size else "")
+              + f"; transfer at {', '.join(f'{t:.3f}' for t in tr['transfer_points_deg'])} deg")
         figdir = Path(a.figures) if a.figures else outdir
         figdir.mkdir(parents=True, exist_ok=True)
         import matplotlib.pyplot as plt

@@ -22,11 +22,16 @@ def test_good_input_builds():
     assert inp.c_ham_value == pytest.approx(0.210 + 0.290 / (39 / 14) ** 2)
 
 
-def test_nonzero_offset_is_rejected_with_a_clear_reason():
-    with pytest.raises(DesignError, match="hypoid offset is not supported") as ei:
-        BlankInput(**GOOD, a=5.0)
-    assert fields_of(ei.value) == {"a"}
-    assert ei.value.problems[0].unit == "mm" and ei.value.problems[0].allowed == "a = 0"
+def test_offset_beyond_the_wheel_radius_is_rejected_with_a_clear_reason():
+    BlankInput(**GOOD, a=5.0)  # a hypoid offset is accepted (ISO 23509 Method 1)
+    for a in (1e4, float("nan")):
+        with pytest.raises(DesignError) as ei:
+            BlankInput(**GOOD, a=a)
+        assert fields_of(ei.value) == {"a"}
+        assert ei.value.problems[0].unit == "mm"
+    with pytest.raises(DesignError, match="computes the pinion face width") as ei:
+        BlankInput(**GOOD, a=5.0, b1=30.0)
+    assert fields_of(ei.value) == {"b1"}
 
 
 def test_all_problems_are_listed_at_once():
@@ -71,7 +76,8 @@ def test_hand_accepts_strings():
 
 NUMERIC = ["de2", "b", "beta_m", "rc0", "shaft_angle", "alpha_dD", "alpha_dC", "k_d", "k_c", "jen", "a"]
 BAD = [float("nan"), float("inf"), -1.0, -1e-9, 1e9, "3", None]
-VALID = {("jen", None), ("jen", 1e9), ("rc0", 1e9)}  # no or huge backlash, huge cutter
+VALID = {("jen", None), ("jen", 1e9), ("rc0", 1e9),  # no or huge backlash, huge cutter
+         ("a", -1.0), ("a", -1e-9)}  # a hypoid offset of either sign (ISO 23509 Method 1)
 # a huge wheel is valid by itself, but then the cutter is too small for the duplex taper -> rc0 is named
 CULPRIT = {("de2", None): "de2/met", ("de2", 1e9): "rc0"}
 

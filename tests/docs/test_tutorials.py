@@ -61,8 +61,6 @@ def test_basic_data_synthesis_tca_ltca(basic):
     assert np.all(np.isfinite(lt.max_pressure)) and np.all(lt.max_pressure > 0)
 
 
-@pytest.mark.xfail(strict=True, reason="main 3c15b1a: at the first position of a new pair (status OK, TCA TE -1.46 arcsec) "
-                   "the LTCA's unloaded separations give +130 arcsec (per-contact grid); reported to the lead")
 def test_basic_data_ltca_unloaded_te_is_the_tca_te(basic):
     # independent cross-check: the LTCA's unloaded TE comes from its own separations of the potential contact points;
     # where TCA found a contact it must be the TCA's TE of the pair in contact (both arcsec)

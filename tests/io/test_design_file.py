@@ -73,3 +73,15 @@ def test_missing_required():
 def test_missing_file(tmp_path):
     with pytest.raises(DesignError, match="file not found"):
         load_design(tmp_path / "nope.toml")
+
+
+def test_tca_positions_key():
+    """[tca] positions: default 41; out of range names the key, the value and the range."""
+    from spiralbevel.errors import DesignError
+    from spiralbevel.io.design_file import default_design_text, parse_design
+
+    assert parse_design(default_design_text()).tca.positions == 41
+    assert parse_design(default_design_text() + "\n[tca]\npositions = 241\n").tca.positions == 241
+    with pytest.raises(DesignError) as e:
+        parse_design(default_design_text() + "\n[tca]\npositions = 3\n")
+    assert "tca.positions" in str(e.value) and "3" in str(e.value) and "11" in str(e.value)

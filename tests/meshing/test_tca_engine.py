@@ -57,8 +57,16 @@ def test_conjugate_pair_line_contact_zero_te(pair, kin):
     assert np.all(np.isinf(res.semi_axes[:, 0]))
     # every solution satisfies the contact equations
     assert np.max(res.residual) < 1e-10
-    # the reported point of the line is the mid-face one (anchor: pinion phi = reference value)
-    np.testing.assert_allclose(res.params1[..., 1], pair.pinion.reference_params[1], atol=1e-12)
+    # the reported point of the line is the mid-face one (anchor: pinion phi = reference value); where that point
+    # lies beyond the gear's top edge, the pair's contact is reported as the edge contact of that top edge, at the
+    # same (zero) TE, on the edge
+    line = res.status_pairs == ContactStatus.LINE
+    np.testing.assert_allclose(res.params1[line][:, 1], pair.pinion.reference_params[1], atol=1e-12)
+    edge = res.status_pairs == ContactStatus.EDGE
+    assert np.all(line | edge)
+    g1 = np.min(pair.pinion.boundary_margins(res.params1[edge]), axis=-1)
+    g2 = np.min(pair.gear.boundary_margins(res.params2[edge]), axis=-1)
+    assert np.max(np.minimum(np.abs(g1), np.abs(g2))) < 1e-11
 
 
 def test_contact_points_coincide_and_normals_opposite(crowned_result):
@@ -73,7 +81,9 @@ def test_contact_points_coincide_and_normals_opposite(crowned_result):
     p2 = np.einsum("...ij,...j->...i", rot_axis(a2, phi2) @ rot_y(res.shaft_angle), res.point2)
     n2 = np.einsum("...ij,...j->...i", rot_axis(a2, phi2) @ rot_y(res.shaft_angle), res.normal2)
     assert np.max(np.linalg.norm(p1 - p2, axis=-1)) < 1e-9
-    assert np.max(np.linalg.norm(res.normal_fixed + n2, axis=-1)) < 1e-11
+    # opposite normals at surface contacts (at an edge contact only the touched flank has a normal there)
+    surf = res.status_pairs != ContactStatus.EDGE
+    assert np.max(np.linalg.norm(res.normal_fixed + n2, axis=-1)[surf]) < 1e-11
 
 
 def test_vectorized_matches_per_position_fsolve(crowned, pair, kin, crowned_result):
@@ -90,6 +100,8 @@ def test_vectorized_matches_per_position_fsolve(crowned, pair, kin, crowned_resu
             basis = prob.basis(xp, phi)
             xp = _fsolve(prob, phi, basis, xp)
             assert np.max(np.abs(prob.residual(xp, phi, basis))) < 1e-9
+            if res.status_pairs[i, 1] == ContactStatus.EDGE:
+                continue  # the surface contact lies beyond a flank boundary: TCA reports the edge contact there
             p_ref = crowned.evaluate(xp[0:2])[0]
             worst = max(worst, np.linalg.norm(p_ref - res.point1[i, 1]),
                         np.linalg.norm(pair.gear.evaluate(xp[2:4])[0] - res.point2[i, 1]))
@@ -155,13 +167,19 @@ def test_transfer_points_and_path_continuity(crowned, pair, kin):
 
 
 def test_edge_contact_detected(crowned, pair, kin):
+    """A pinion narrowed face-wise: the surface contact runs off its toe and heel; there TCA reports the edge
+    contact: a point on one member's boundary, on the other member's real flank."""
     base = pair.pinion
     narrow = base.with_changes(phi_range=(base.reference_params[1] - 0.02, base.reference_params[1] + 0.02))
     crowned_narrow = NormalDeviation(narrow, crowned.deviation)
     res = solve_tca(crowned_narrow, pair.gear, kin)
     edge = res.status_pairs == ContactStatus.EDGE
     assert edge.any()
-    assert np.all(~narrow.contains(res.params1[edge]) | ~pair.gear.contains(res.params2[edge]))
+    g1 = np.min(narrow.boundary_margins(res.params1[edge]), axis=-1)
+    g2 = np.min(pair.gear.boundary_margins(res.params2[edge]), axis=-1)
+    # on one member's boundary (1e-11: the edge solve's tolerance), on the other's flank
+    assert np.all(np.minimum(np.abs(g1), np.abs(g2)) < 1e-11)
+    assert np.all((g1 > -1e-11) & (g2 > -1e-11))
     ok = res.status_pairs == ContactStatus.OK
     assert np.all(narrow.contains(res.params1[ok]) & pair.gear.contains(res.params2[ok]))
     assert np.any(res.status == ContactStatus.EDGE)
@@ -186,29 +204,28 @@ def test_te_units(crowned_result):
     assert ARCSEC == pytest.approx(np.radians(1 / 3600))
 
 
-def test_edge_positions_report_no_te(crowned_result, crowned, pair, kin):
-    """Only contacts on both real flanks count: where the extended surfaces of a pair would touch beyond a flank
-    boundary before the best real-flank contact, the position is EDGE (which pair, member and edge recorded) and
-    reports no TE; elsewhere the TE is that of a contact inside both flank domains."""
+def test_edge_positions_report_the_edge_contact(crowned_result, crowned, pair, kin):
+    """Only contacts on the real flanks count: where the extended surfaces of a pair would touch beyond a flank
+    boundary, the pair's contact is the edge contact of that boundary against the other flank. Its TE trails the
+    extended surfaces' contact (a subset of the same flank touches later) and leads every other pair's contact where
+    it is reported; elsewhere the TE is that of a contact inside both flank domains."""
     res = crowned_result
     edge = res.status == ContactStatus.EDGE
     assert edge.any() and len(res.edges) == edge.sum()
-    assert np.all(np.isnan(res.te[edge]))
+    assert np.all(np.isfinite(res.te[edge]))
     ok = ~edge & (res.pair >= 0)
     j = res.pair[ok]
     i = np.flatnonzero(ok)
     assert np.all(crowned.contains(res.params1[i, j])) and np.all(pair.gear.contains(res.params2[i, j]))
+    ext = solve_tca(crowned, pair.gear, kin, flank_bounds=False)
+    assert np.all(np.isfinite(ext.te)) and not np.any(ext.status == ContactStatus.EDGE)
     for idx, k, member, name in res.edges:
         jj = list(res.pairs).index(k)
         surf, q = (crowned, res.params1) if member == "pinion" else (pair.gear, res.params2)
         g = surf.boundary_margins(q[idx, jj])
-        assert name == surf.boundary_names[int(np.argmin(g))] and g.min() < 0
-        # that pair's extended contact leads every real-flank contact at this position
-        phys = np.isin(res.status_pairs[idx], (ContactStatus.OK, ContactStatus.LINE))
-        assert res.te_pairs[idx, jj] > np.max(res.te_pairs[idx, phys], initial=-np.inf)
-    # the extended model (flank_bounds=False) reports the extended TE there instead
-    ext = solve_tca(crowned, pair.gear, kin, flank_bounds=False)
-    assert np.all(np.isfinite(ext.te)) and not np.any(ext.status == ContactStatus.EDGE)
+        assert abs(g[list(surf.boundary_names).index(name)]) < 1e-11  # on the named edge
+        assert res.te_pairs[idx, jj] <= ext.te_pairs[idx, jj] + 1e-15
+        assert res.te_pairs[idx, jj] >= np.nanmax(np.delete(res.te_pairs[idx], jj), initial=-np.inf)
 
 
 @pytest.mark.parametrize("crown", [(0.5, 0.0, 5.0), (2.0, 0.0, 1.0), (0.2, 0.0, 20.0)])

@@ -2,6 +2,8 @@
 
 import numpy as np
 
+from spiralbevel.meshing.tca_result import ARCSEC
+
 from spiralbevel.meshing.contact_surface import NormalDeviation, quadratic_crowning
 from spiralbevel.meshing.kinematics import BevelPairKinematics
 from spiralbevel.meshing.tca import solve_tca
@@ -16,9 +18,12 @@ def test_plot_draws_all_panels(tmp_path):
     res = solve_tca(crowned, pair.gear, kin)
     fig = res.plot(outline1=pair.pinion.grid(), outline2=pair.gear.grid())
     ax_te, ax1, ax2 = fig.axes[:3]
-    # TE panel: one curve per pair + the envelope, in arcsec
+    # TE panel: one curve per pair + the envelope through the exact transfer points, in arcsec
     env = ax_te.lines[len(res.pairs)]
-    np.testing.assert_allclose(env.get_ydata(), res.te_arcsec)
+    x = np.r_[res.phi1 - res.phi1_mean, res.transfer_phi1 - res.phi1_mean]
+    y = np.r_[res.te_arcsec, res.transfer_te / ARCSEC]
+    o = np.argsort(x, kind="stable")
+    np.testing.assert_allclose(env.get_ydata(), y[o])
     # tooth panels: 4 boundary lines, the contact path, ellipses
     path = project_axial_radial(res.contact_point1)
     ok = res.status <= 1

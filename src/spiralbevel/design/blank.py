@@ -1,4 +1,4 @@
-"""Blank geometry of a spiral bevel gear pair without offset: ISO 23509 Method 0, face milling.
+"""Blank geometry of a bevel gear pair, face milling: ISO 23509 Method 0 (a = 0) and Method 1 (Gleason, hypoid).
 
 :func:`compute_blank` turns a :class:`~spiralbevel.design.blank_input.BlankInput` into a
 :class:`~spiralbevel.design.blank_result.BevelBlank` (the "dimension sheet"), runs the checks of
@@ -66,7 +66,11 @@ def _spiral_angles(inp: BlankInput, rm: float, re: tuple[float, float], ri: tupl
 
 
 def compute_blank(inp: BlankInput) -> BevelBlank:
-    """Compute the blank dimensions of a spiral bevel pair without offset (ISO 23509 Method 0, face milling).
+    """Compute the blank dimensions of a bevel pair (ISO 23509, face milling): Method 0 for a = 0, Method 1 otherwise.
+
+    A hypoid (a != 0) takes its pitch cones, spiral angles, cones and face widths from
+    :func:`~spiralbevel.design.blank_hypoid_dims.hypoid_quantities`; thickness, checks and top lands below are shared,
+    with the wheel's Rm2, βm2 where the standard uses them and each member's own Rm, βm for its virtual gear.
 
     Parameters
     ----------
@@ -103,6 +107,49 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
     each member (x_sm1, x_sm2); smn from :func:`~spiralbevel.design.blank_thickness.mean_normal_thickness`;
     jmn = jen·(Rm/Re2)·cos βm/cos βe2 is the mean normal backlash.
     """
+    if inp.a != 0.0:
+        from .blank_hypoid_dims import hypoid_quantities
+
+        q = hypoid_quantities(inp)
+    else:
+        q = _method0_quantities(inp)
+    rm, beta_m, alpha_n = q["Rm2"], q["beta_m2"], 0.5 * (q["alpha_nD"] + q["alpha_nC"])
+    re2, mmn, x_hm1 = q["Re2"], q["mmn"], q["x_hm1"]
+    alpha_nD, alpha_nC = q["alpha_nD"], q["alpha_nC"]
+
+    # backlash and thickness (ISO 23509: x_smn = k_t/2 for data type II, backlash half from each member)
+    cbe2 = math.cos(q["beta_e2"])
+    if inp.jet is not None:
+        jet = float(inp.jet)
+        jen = jet * cbe2 * math.cos(alpha_n)
+    else:
+        jen = float(inp.jen or 0.0)
+        jet = jen / (cbe2 * math.cos(alpha_n))
+    x_smn = 0.5 * float(inp.k_t)
+    x_sm1, x_sm2 = thickness_modification_coefficients(x_smn, jen, mmn, rm, re2, beta_m, q["beta_e2"], alpha_n)
+    smn1, smn2 = mean_normal_thickness(mmn, x_hm1, x_sm1, x_sm2, alpha_n)
+    q.update(jen=jen, jet=jet, jmn=jen * rm * math.cos(beta_m) / (re2 * cbe2), x_smn=x_smn, x_sm1=x_sm1,
+             x_sm2=x_sm2, smn1=smn1, smn2=smn2, smt1=smn1 / math.cos(q["beta_m1"]), smt2=smn2 / math.cos(beta_m))
+    cos2 = math.cos(alpha_n) ** 2
+    for k in (1, 2):
+        delta = q[f"delta{k}"]
+        dvn = virtual_normal_diameter(q[f"Rm{k}"], delta, q[f"beta_m{k}"], cos2)
+        smnc, hamc = chordal_values(q[f"smn{k}"], q[f"ham{k}"], dvn, delta)
+        q.update({f"dvn{k}": dvn, f"smnc{k}": smnc, f"hamc{k}": hamc,
+                  f"hlim{k}": undercut_limit_depth(dvn, min(alpha_nD, alpha_nC))})
+
+    blank = BevelBlank(**{**q, **{f"sa{w}{k}": math.nan for k in (1, 2) for w in "ime"}}, inp=inp)
+    errors, warns = check_blank(blank)
+    if errors:
+        raise GeometryError(errors)
+    lands = {f"sa{w}{k}": top_land(blank, k, w) for k in (1, 2) for w in "ime"}
+    for msg in warns:
+        warnings.warn(msg, DesignWarning, stacklevel=2)
+    return BevelBlank(**{**q, **lands}, warnings=tuple(warns), inp=inp)
+
+
+def _method0_quantities(inp: BlankInput) -> dict:
+    """Every Method 0 quantity (a = 0) before the tooth thickness, keyed by ISO symbol."""
     z1, z2 = inp.z1, inp.z2
     u = z2 / z1
     sigma = inp.shaft_angle
@@ -141,7 +188,8 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
                       given={k: getattr(inp, k) for k in ("theta_a1", "theta_a2", "theta_f1", "theta_f2")})
     sum_used = ta.theta_f1 + ta.theta_f2
 
-    q: dict = dict(z1=z1, z2=z2, u=u, Sigma=sigma, a=0.0, hand1=inp.hand1, hand2=inp.hand1.opposite,
+    q: dict = dict(eta=0.0, zeta_m=0.0, zeta_mp=0.0, ap=0.0, zeta_R=0.0, zeta_o=0.0, c_be2=0.5,
+                   rho_lim=math.inf, z1=z1, z2=z2, u=u, Sigma=sigma, a=0.0, hand1=inp.hand1, hand2=inp.hand1.opposite,
                    taper=inp.taper, rc0=float(inp.rc0), c_ham=c_ham, k_d=float(inp.k_d), k_c=float(inp.k_c),
                    k_t=float(inp.k_t), delta1=delta1, delta2=delta2, zp=z2 / s2, b1=b1, b2=b2, Re1=re1, Re2=re2,
                    Rm=rm, Rm1=rm, Rm2=rm, Ri1=ri1, Ri2=ri2, de1=2.0 * re1 * s1, de2=2.0 * re2 * s2, dm1=dm1, dm2=dm2,
@@ -161,31 +209,4 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
         delta1=delta1, rm=rm, theta_a1=q["theta_a1"], theta_f1=q["theta_f1"], ham2=ham2, hfm2=hfm2, c=c,
         txo1=q["txo1"]).items()})
 
-    # backlash and thickness (ISO 23509: x_smn = k_t/2 for data type II, backlash half from each member)
-    cbe2 = math.cos(q["beta_e2"])
-    if inp.jet is not None:
-        jet = float(inp.jet)
-        jen = jet * cbe2 * math.cos(alpha_n)
-    else:
-        jen = float(inp.jen or 0.0)
-        jet = jen / (cbe2 * math.cos(alpha_n))
-    x_smn = 0.5 * float(inp.k_t)
-    x_sm1, x_sm2 = thickness_modification_coefficients(x_smn, jen, mmn, rm, re2, beta_m, q["beta_e2"], alpha_n)
-    smn1, smn2 = mean_normal_thickness(mmn, x_hm1, x_sm1, x_sm2, alpha_n)
-    q.update(jen=jen, jet=jet, jmn=jen * rm * math.cos(beta_m) / (re2 * cbe2), x_smn=x_smn, x_sm1=x_sm1,
-             x_sm2=x_sm2, smn1=smn1, smn2=smn2, smt1=smn1 / math.cos(beta_m), smt2=smn2 / math.cos(beta_m))
-    cos2 = math.cos(alpha_n) ** 2
-    for k, delta in ((1, delta1), (2, delta2)):
-        dvn = virtual_normal_diameter(rm, delta, beta_m, cos2)
-        smnc, hamc = chordal_values(q[f"smn{k}"], q[f"ham{k}"], dvn, delta)
-        q.update({f"dvn{k}": dvn, f"smnc{k}": smnc, f"hamc{k}": hamc,
-                  f"hlim{k}": undercut_limit_depth(dvn, min(alpha_nD, alpha_nC))})
-
-    blank = BevelBlank(**{**q, **{f"sa{w}{k}": math.nan for k in (1, 2) for w in "ime"}}, inp=inp)
-    errors, warns = check_blank(blank)
-    if errors:
-        raise GeometryError(errors)
-    lands = {f"sa{w}{k}": top_land(blank, k, w) for k in (1, 2) for w in "ime"}
-    for msg in warns:
-        warnings.warn(msg, DesignWarning, stacklevel=2)
-    return BevelBlank(**{**q, **lands}, warnings=tuple(warns), inp=inp)
+    return q

@@ -37,8 +37,18 @@ def _g(bl: BevelBlank, name: str, k: int):
 def _section(bl: BevelBlank, k: int, where: str) -> tuple[float, float, float, float]:
     """Cone distance, spiral angle, addendum and dedendum of member k at 'i' (toe), 'm' or 'e' (heel)."""
     if where == "m":
-        return bl.Rm, _g(bl, "beta_m", k), _g(bl, "ham", k), _g(bl, "hfm", k)
+        return _rm(bl, k), _g(bl, "beta_m", k), _g(bl, "ham", k), _g(bl, "hfm", k)
     return (_g(bl, f"R{where}", k), _g(bl, f"beta_{where}", k), _g(bl, f"ha{where}", k), _g(bl, f"hf{where}", k))
+
+
+def _rm(bl: BevelBlank, k: int) -> float:
+    """Mean cone distance of member k (Rm for a = 0, Rm1 or Rm2 for a hypoid)."""
+    return bl.Rm if bl.a == 0.0 else _g(bl, "Rm", k)
+
+
+def _mmt(bl: BevelBlank, k: int) -> float:
+    """Mean transverse module of member k (mmt for a = 0; dm_k/z_k for a hypoid, whose spiral angles differ)."""
+    return bl.mmt if bl.a == 0.0 else _g(bl, "dm", k) / _g(bl, "z", k)
 
 
 def _cos2_alpha(bl: BevelBlank) -> float:
@@ -73,7 +83,7 @@ def normal_thickness(bl: BevelBlank, k: int, where: str) -> float:
     the toe and heel thickness behind the AGMA 929-style top lands below.
     """
     r, beta, _ha, hf = _section(bl, k, where)
-    pn = math.pi * bl.mmt * r / bl.Rm * math.cos(beta)
+    pn = math.pi * _mmt(bl, k) * r / _rm(bl, k) * math.cos(beta)
     space_m = math.pi * bl.mmn - _g(bl, "smn", k)
     return pn - space_m - (hf - _g(bl, "hfm", k)) * (math.tan(bl.alpha_nD) + math.tan(bl.alpha_nC))
 
@@ -150,7 +160,7 @@ def check_blank(bl: BevelBlank) -> tuple[list[Problem], list[str]]:
         for where, label in (("i", "toe"), ("m", "mean point"), ("e", "heel")):
             r, beta, _ha, _hf = _section(bl, k, where)
             sa = top_land(bl, k, where)
-            mxn = bl.mmt * r / bl.Rm * math.cos(beta)
+            mxn = _mmt(bl, k) * r / _rm(bl, k) * math.cos(beta)
             sym = f"sa{where}{k}"
             if not sa > 0.0:
                 if where == "m":

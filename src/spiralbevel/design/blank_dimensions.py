@@ -25,7 +25,8 @@ __all__ = ["member_dimensions", "pinion_apex_distances"]
 
 
 def member_dimensions(
-    *, delta: float, rm: float, re: float, ri: float, theta_a: float, theta_f: float, ham: float, hfm: float
+    *, delta: float, rm: float, re: float, ri: float, theta_a: float, theta_f: float, ham: float, hfm: float,
+    tzm: float | None = None,
 ) -> dict[str, float]:
     """Dimensions of one member from its mean-point depths and taper angles (a = 0).
 
@@ -39,6 +40,9 @@ def member_dimensions(
         Addendum and dedendum angle.
     ham, hfm : float, mm
         Mean addendum and mean dedendum.
+    tzm : float or None, mm
+        Crossing point to mean point along the axis; default Rm·cos δ (a = 0: the crossing point is the pitch apex).
+        A hypoid member passes its own value (ISO 23509 Method 1, ``blank_hypoid.hypoid_offset_angles``).
 
     Returns
     -------
@@ -71,12 +75,12 @@ def member_dimensions(
     hai, hfi = ham - bi * ta, hfm - bi * tf
     da, df = delta + theta_a, delta - theta_f
     de, di = 2.0 * re * sd, 2.0 * ri * sd
-    tzm = rm * cd
+    tzm = rm * cd if tzm is None else tzm
     tz = rm * cd - tzm
     txo = tzm + be * cd - hae * sd
     dae = de + 2.0 * hae * cd
     # root cone line through the mean root point (axial z from the crossing point, radius r); unit normal outward
-    z_root, r_root = rm * cd + hfm * sd, rm * sd - hfm * cd
+    z_root, r_root = tzm + hfm * sd, rm * sd - hfm * cd
     ht = (txo - z_root) * -math.sin(df) + (0.5 * dae - r_root) * math.cos(df)
     return {
         "be": be, "bi": bi, "delta_a": da, "delta_f": df,

@@ -1,4 +1,4 @@
-"""Input data of the ISO 23509 blank geometry (Method 0, face milling, no offset).
+"""Input data of the ISO 23509 blank geometry (Method 0 without offset, Method 1 for hypoids; face milling).
 
 :class:`BlankInput` holds the basic data of a spiral bevel gear pair in SI-internal units (mm, rad). Every field is
 checked when the object is built; all problems are reported at once in one :class:`~spiralbevel.errors.DesignError`.
@@ -80,7 +80,10 @@ class BlankInput:
         Addendum and dedendum angles, only with ``taper="given"``. Uniform clearance is assumed (θa1 = θf2,
         θa2 = θf1), so give θf2 or θa1, and θf1 or θa2; values given for both of a pair must agree.
     a : float, mm
-        Hypoid offset. Only 0 is supported; the field keeps room for hypoid data.
+        Hypoid offset, ``|a| < de2/2``; positive when the pinion offset follows the hand of spiral of the wheel
+        (ISO 23509 B.3, ``docs/conventions.md``). 0 gives the spiral bevel pair of ISO 23509 Method 0; a != 0 the
+        hypoid pair of Method 1 (Gleason), with ``beta_m`` the desired pinion mean spiral angle βΔ1 and the pinion
+        face width computed (``b1`` not given).
 
     Raises
     ------
@@ -225,10 +228,18 @@ class BlankInput:
         if self.jen is not None and self.jet is not None:
             P.append(Problem("jen/jet", (self.jen, self.jet), "at most one of jen, jet given", "-"))
 
-        if _is_real(self.a) and self.a == 0.0:
-            pass
-        else:
-            bad("a", "a = 0", "mm", "hypoid offset is not supported yet; ISO 23509 Methods 1-3 are not implemented")
+        a_ok = _is_real(self.a)
+        if not a_ok:
+            bad("a", "a finite number", "mm")
+        elif self.a != 0.0:
+            if size_ok and abs(self.a) >= 0.5 * self.de2_value:
+                bad("a", f"|a| < de2/2 = {0.5 * self.de2_value:.6g}", "mm", "the offset must be smaller than the "
+                    "wheel's pitch radius (ISO 23509 Method 1)")
+            if self.b1 is not None:
+                bad("b1", "None for a hypoid (a != 0)", "mm", "ISO 23509 Method 1 computes the pinion face width")
+            if not 0.0 < self.beta_m:
+                bad("beta_m", "beta_m > 0 for a hypoid (a != 0)", "deg", "the desired pinion spiral angle of "
+                    "ISO 23509 Method 1 must be positive")
 
         self._check_taper(P, real_in)
 

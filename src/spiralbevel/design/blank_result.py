@@ -25,11 +25,12 @@ _KIND = {
 
 @dataclass(frozen=True)
 class BevelBlank:
-    """Blank geometry of a spiral bevel pair without offset (ISO 23509 Method 0, face milling).
+    """Blank geometry of a spiral bevel (ISO 23509 Method 0) or hypoid pair (Method 1), face milling.
 
     Built by :func:`spiralbevel.design.blank.compute_blank`. Subscript 1 = pinion, 2 = wheel. Attributes are grouped as in
     ``blank_meta.QUANTITIES``: basic data (``z1, z2, u, Sigma, hand1, hand2, rc0``, factors), pitch cone (``delta1,
-    delta2, Re1, Re2, Rm, Rm1, Rm2, Ri1, Ri2, b1, b2, be*, bi*, de*, dm*, di*, met, mmt, mmn``), spiral and
+    delta2, Re1, Re2, Rm, Rm1, Rm2, Ri1, Ri2, b1, b2, be*, bi*, de*, dm*, di*, met, mmt, mmn``), hypoid offset
+    (``eta, zeta_m, zeta_mp, ap, zeta_R, zeta_o, c_be2, rho_lim``), spiral and
     pressure angles (``beta_m*, beta_e*`` heel, ``beta_i*`` toe, ``alpha_nD, alpha_nC, alpha_lim, alpha_eD,
     alpha_eC, alpha_e``), mean depths (``hmw, c, hm, x_hm1, x_smn, ham*, hfm*``), taper (``theta_a*, theta_f*,
     delta_a*, delta_f*``, the dedendum angle sums), heel/toe depths and diameters (``hae*, hfe*, he*, hai*, hfi*,
@@ -82,6 +83,14 @@ class BevelBlank:
     met: float
     mmt: float
     mmn: float
+    eta: float
+    zeta_m: float
+    zeta_mp: float
+    ap: float
+    zeta_R: float
+    zeta_o: float
+    c_be2: float
+    rho_lim: float
     beta_m1: float
     beta_m2: float
     beta_e1: float

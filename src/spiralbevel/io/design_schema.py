@@ -13,8 +13,8 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_valida
 from .angles import parse_angle_deg
 
 __all__ = ["Angle", "GearSetSpec", "DepthSpec", "FlankSpec", "ManufacturingSpec", "OutputSpec", "CutterSpec",
-           "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "SynthesisSpec", "LTCASpec",
-           "RatingSpec", "DesignFile"]
+           "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "SynthesisSpec", "TCASpec", "LTCASpec",
+           "CrowningSpec", "MisalignmentSpec", "RatingSpec", "DesignFile"]
 
 Angle = Annotated[float, BeforeValidator(parse_angle_deg)]
 GridCount = Annotated[int, Field(ge=3, le=401)]
@@ -66,7 +66,13 @@ class GearSetSpec(_Model):
     mean_spiral_angle: Angle = _f(..., unit="deg", gt=0.0, lt=60.0, description="beta_m (magnitude)")
     pinion_hand: Literal["RH", "LH"] = _f("RH", description="hand of spiral of the pinion; the gear is opposite")
     cutter_radius: float = _f(114.3, unit="mm", gt=0.0, le=1000.0, description="r_c0 nominal cutter radius")
-    hypoid_offset: float = _f(0.0, unit="mm", description="a; only 0 is supported yet")
+    hypoid_offset: float = _f(0.0, unit="mm", ge=-1000.0, le=1000.0, description="a, ISO 23509 sign: > 0 when the "
+                               "pinion offset follows the wheel's hand of spiral; != 0: Method 1 (Gleason) blank only")
+    blank_method: Optional[Literal[0, 1, 2, 3]] = _f(
+        None, description="ISO 23509 pitch-cone method: 0 (no offset), 1 (Gleason, hypoid); 2 and 3 (Oerlikon, "
+        "Klingelnberg) are not implemented; default from hypoid_offset (0 -> 0, else 1)")
+    limit_pressure_angle_factor: float = _f(0.0, ge=0.0, le=1.0, description="f_alim: share of the limit pressure "
+                                            "angle taken into the generated flank angles (hypoid, ISO 23509)")
     depth: DepthSpec = DepthSpec()
 
     @model_validator(mode="after")
@@ -88,6 +94,10 @@ class ManufacturingSpec(_Model):
     die_direction: tuple[float, float, float] = _f((0.0, 0.0, 1.0), unit="-", description="forging die opening")
     ball_radius: float = _f(2.0, unit="mm", gt=0.0, le=50.0, description="ball-end tool radius")
     scallop_height: float = _f(0.005, unit="mm", gt=0.0, le=1.0, description="allowed scallop height")
+    draft_angle: Angle = _f(0.0, unit="deg", ge=0.0, lt=45.0,
+                            description="minimum forging draft angle: n_out . v_d <= -sin(draft_angle)")
+    forging_relief: bool = _f(False, description="log-spiral: relieve the flanks that fail the draft (two feature "
+                              "parameters of least added volume, docs/forging.md)")
 
     @field_validator("die_direction")
     @classmethod
@@ -169,6 +179,36 @@ class SynthesisSpec(_Model):
     control_points: int = _f(11, ge=3, le=61, description="multi-point control: number of control points")
     offset_interpolation: Literal["spline", "linear", "polynomial"] = _f(
         "spline", description="blank-offset law between control points")
+
+
+class MisalignmentSpec(_Model):
+    """Misalignment sizes of the sensitivity study (each applied alone; signs in docs/conventions.md)."""
+
+    pinion_axial: float = _f(0.05, unit="mm", gt=0.0, le=5.0, description="Delta A1")
+    gear_axial: float = _f(0.05, unit="mm", gt=0.0, le=5.0, description="Delta A2")
+    offset: float = _f(0.05, unit="mm", gt=0.0, le=5.0, description="Delta E")
+    shaft_angle: Angle = _f(0.05, unit="deg", gt=0.0, le=2.0, description="Delta gamma")
+
+
+class CrowningSpec(_Model):
+    """Log-spiral designs: crown the pinion so that the conjugate pair becomes mismatched (point contact), from
+    targets at the mean point (docs/logspiral_mismatch.md)."""
+
+    side: Literal["convex", "concave"] = _f("convex", description="pinion flank crowned (meets the other gear side)")
+    semi_major_axis: float = _f(6.0, unit="mm", gt=0.0, le=50.0, description="contact ellipse a at the mean point")
+    path_direction: Angle = _f(20.0, unit="deg", gt=-89.0, lt=89.0,
+                               description="eta: path on the pinion flank from the profile toward the heel")
+    te_level: float = _f(8.0, unit="arcsec", gt=0.0, le=600.0, description="parabolic TE at the cycle ends")
+    approach: float = _f(0.00635, unit="mm", gt=0.0, le=0.1, description="elastic approach of the ellipse")
+    misalignment: MisalignmentSpec = MisalignmentSpec()
+
+
+class TCASpec(_Model):
+    """Unloaded tooth contact analysis of a face-milled pair (both sides and the misalignment study)."""
+
+    positions: int = _f(41, ge=11, le=4001,
+                        description="pinion positions over one mesh cycle (transfer points are solved exactly "
+                        "between them)")
 
 
 class LTCASpec(_Model):
@@ -259,7 +299,15 @@ class DesignFile(_Model):
     flank: FlankSpec = FlankSpec()
     face_milling: FaceMillingSpec = FaceMillingSpec()
     synthesis: Optional[SynthesisSpec] = None
+    tca: TCASpec = TCASpec()
     ltca: Optional[LTCASpec] = None
+    crowning: Optional[CrowningSpec] = None
     rating: Optional[RatingSpec] = None
     manufacturing: ManufacturingSpec = ManufacturingSpec()
     output: OutputSpec = OutputSpec()
+
+    @model_validator(mode="after")
+    def _crowning_is_logspiral(self):
+        if self.crowning is not None and self.flank.kind != "log-spiral":
+            raise ValueError("[crowning] applies to flank.kind = 'log-spiral' only (face-milled pairs: [synthesis])")
+        return self

@@ -6,7 +6,7 @@ boundary (``docs/conventions.md``).
 JSON layout of :func:`dimension_sheet_json`::
 
     {
-      "method": "ISO 23509 Method 0, face milling, no offset",
+      "method": "ISO 23509 Method 0, face milling, no offset",   # or "... Method 1 (Gleason) ..." for a != 0
       "pair":   {"u": ..., "Sigma": ..., "Rm": ..., "mmn": ..., "hmw": ..., ...},   # shared quantities
       "pinion": {"z1": ..., "delta1": ..., "Re1": ..., ...},                      # symbols ending in 1
       "gear":   {"z2": ..., "delta2": ..., "Re2": ..., ...},                      # symbols ending in 2
@@ -81,7 +81,9 @@ def dimension_sheet_json(blank) -> dict[str, Any]:
 
     values = blank.to_dict(degrees=True)
     meta = {sym: (desc, unit) for sym, desc, unit in blank.metadata(degrees=True)}
-    out: dict[str, Any] = {"method": "ISO 23509 Method 0, face milling, no offset", "pair": {}, "pinion": {},
+    method = ("ISO 23509 Method 0, face milling, no offset" if blank.a == 0.0
+              else "ISO 23509 Method 1 (Gleason), face milling, hypoid offset")
+    out: dict[str, Any] = {"method": method, "pair": {}, "pinion": {},
                            "gear": {}, "units": {}, "descriptions": {}, "warnings": list(blank.warnings)}
     for base, _desc, _kind, scope in QUANTITIES:
         names = [(base, "pair")] if scope == "pair" else [(base + "1", "pinion"), (base + "2", "gear")]

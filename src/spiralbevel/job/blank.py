@@ -31,6 +31,7 @@ FIELD_PATHS = {
     "theta_f2": "gear_set.depth.dedendum_angles[1]",
     "theta_a2": "gear_set.depth.gear_addendum_dedendum_angles[0]",
     "a": "gear_set.hypoid_offset",
+    "f_alim": "gear_set.limit_pressure_angle_factor",
 }
 
 
@@ -47,7 +48,9 @@ def blank_input_from_design(spec: DesignFile):
         alpha_dC=r(g.coast_pressure_angle if g.coast_pressure_angle is not None else g.normal_pressure_angle),
         c_ham=d.mean_addendum_factor, k_d=d.depth_factor, k_c=d.clearance_factor, k_t=d.thickness_factor,
         jen=d.backlash if d.backlash > 0 else None, taper=d.taper, a=g.hypoid_offset,
+        f_alim=g.limit_pressure_angle_factor,
     )
+    _check_method(g.blank_method, g.hypoid_offset)
     if d.taper == "given":
         if d.dedendum_angles is not None:
             kw.update(theta_f1=r(d.dedendum_angles[0]), theta_f2=r(d.dedendum_angles[1]))
@@ -68,6 +71,41 @@ def blank_from_design(spec: DesignFile):
         return compute_blank(inp)
     except DesignError as err:
         raise _renamed(err) from err
+
+
+def _check_method(method, a: float) -> None:
+    """The ISO 23509 method a design file asks for must fit its offset (Method 0: a = 0; Method 1: a != 0)."""
+    if method is None or (method == 0 and a == 0.0) or (method == 1 and a != 0.0):
+        return
+    if method in (2, 3):
+        allowed, reason = "0 or 1", "ISO 23509 Methods 2 (Oerlikon) and 3 (Klingelnberg) are not implemented"
+    elif method == 0:
+        allowed, reason = "1 for a hypoid offset", f"Method 0 has no offset (gear_set.hypoid_offset = {a:g} mm)"
+    else:
+        allowed, reason = "0 without offset", "Method 1 needs a hypoid offset (gear_set.hypoid_offset = 0)"
+    raise DesignError.single("gear_set.blank_method", method, allowed, "-", reason)
+
+
+def require_no_offset(blank, command: str) -> None:
+    """Stop a command that builds flanks when the blank is a hypoid (ISO 23509 Method 1 dimension sheet only).
+
+    Parameters
+    ----------
+    blank : BevelBlank
+        Computed blank.
+    command : str
+        The command's name for the message (e.g. ``"spiralbevel run"``).
+
+    Raises
+    ------
+    DesignError
+        Naming ``gear_set.hypoid_offset`` when a != 0: machine settings, generation and TCA take no offset yet.
+    """
+    if blank.a != 0.0:
+        raise DesignError.single(
+            "gear_set.hypoid_offset", blank.a, f"a = 0 ({command} builds spiral bevel flanks only)", "mm",
+            "the hypoid dimension sheet (ISO 23509 Method 1) is computed: see 'spiralbevel blank'; generation of "
+            "hypoid flanks is not supported yet")
 
 
 def _renamed(err: DesignError) -> DesignError:

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..io.design_schema import DesignFile
-from .blank import blank_from_design
+from .blank import blank_from_design, require_no_offset
 from .rating import rating_report
 from .progress import Steps
 
@@ -52,6 +52,7 @@ def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
         tmp = Path(tmp)
         with steps.step("blank geometry (ISO 23509)"):
             blank = blank_from_design(spec)
+            require_no_offset(blank, "spiralbevel run")
         report = {
             "spiralbevel_version": __version__,
             "title": spec.title,
@@ -81,7 +82,8 @@ def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
 
 def _logspiral_steps(spec) -> int:
     o = spec.output
-    return 4 + int(o.plots) + int(o.draft) + int(o.toolpaths) + int(o.stl) + int(o.step)
+    extra = 2 * int(spec.crowning is not None) + int(bool(o.draft and spec.manufacturing.forging_relief))
+    return 4 + int(o.plots) + int(o.draft) + int(o.toolpaths) + int(o.stl) + int(o.step) + extra
 
 
 def _facemilled_steps(spec) -> int:

@@ -33,8 +33,9 @@ def run_facemilled(spec, blank, out, steps, report, summary):
 
         from .tca import misalignment_sensitivity
 
-        tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids)
-        report["tca"]["misalignment_sensitivity"] = misalignment_sensitivity(blank, setups, "drive")
+        n_pos = spec.tca.positions
+        tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids, n_positions=n_pos)
+        report["tca"]["misalignment_sensitivity"] = misalignment_sensitivity(blank, setups, "drive", n_positions=n_pos)
         if cmc:
             from ..meshing.synthesis.cmc_design import te_summary
 
@@ -70,7 +71,7 @@ def run_facemilled(spec, blank, out, steps, report, summary):
                     f"arcsec, max pressure {lt['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
             from .rating import rating_ltca_report
 
-            rating_ltca_report(spec, blank, report, summary, ltca_result)
+            rating_ltca_report(spec, blank, report, summary, ltca_result, setups=setups, out=out, plots=o.plots)
     with steps.step("ease-off and measurement grids"):
         from .inspection import easeoff_maps, measurement_files
 

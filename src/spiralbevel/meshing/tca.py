@@ -35,7 +35,9 @@ from .._core import tca as _k
 from .._core import tca_batch as _b
 from ..errors import DesignError, NoContactError, Problem
 from .contact_problem import ContactProblem
-from .contact_surface import surface_contains, surface_edge
+from .contact_surface import surface_contains, surface_derivatives
+from .tca_edge import edge_stage
+from .tca_transfer import exact_transfers
 from .ellipse import GLEASON_APPROACH
 from .misalignment import Misalignment
 from .tca_result import ContactStatus, TCAResult
@@ -215,7 +217,7 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         minimum-norm Newton point.
     te_tie : float, rad
         Pairs whose TE is within ``te_tie`` of the largest share the load (line contact of conjugate flanks); the
-        first of them in ``pairs`` order is reported.
+        first of them in ``pairs`` order is reported, a surface contact before an edge contact.
     flank_bounds : bool
         True (default): a contact counts only where both points lie on the real flanks (the surfaces' ``contains``:
         toe, heel, top and fillet junction); False: the analytically extended surfaces are the flanks (the idealized
@@ -258,8 +260,8 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     off = (phi1 - phi1_mean)[:, None] + pairs[None, :] * T  # effective offsets (n, P)
     xp0 = prob.path_tangent(Jm, dm[2], Em)[0]
     half = T / 2
-    nodes, X, Xp, (o_fail_lo, o_fail_hi) = _continuation(prob, xm, xp0, phi1_mean, max(off.min(), -half),
-                                                         min(off.max(), half), half, max(tol, 1e-8))
+    nodes, X, Xp, (o_fail_lo, o_fail_hi) = _continuation(prob, xm, xp0, phi1_mean, off.min(),
+                                                         off.max(), half, max(tol, 1e-8))
     # ---------------------------------------------------------------- 3. all positions x pairs
     # beyond a node the continuation could not reach, the path of contact has ended (the extended flanks end or
     # the normals turn away): those offsets are not solved and are reported as no contact
@@ -311,31 +313,52 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     if not np.any(np.isfinite(te2)):
         raise NoContactError(f"no contact at any of the {n} positions phi1 in [{phi1[0]:.6g}, {phi1[-1]:.6g}] rad")
     sp2 = sp.reshape(n, P)
-    # pair in contact: the largest TE among *physical* contacts (both points on the real flanks); a solution of the
-    # extended surfaces (EDGE) never wins the selection
-    phys = (sp2 == ContactStatus.OK) | (sp2 == ContactStatus.LINE)
-    score = np.where(phys, te2, -np.inf)
-    anyv = np.any(phys, axis=1)
-    # ties (several pairs at the same TE, e.g. line contact of conjugate flanks): the first pair in `pairs` order
-    sel = np.where(anyv, np.argmax(score, axis=1), -1)
+    # edge contacts: where a pair's surface contact lies beyond a flank boundary (and next to such positions where it
+    # is lost), the boundary curve of one member against the other's flank (meshing/tca_edge.py)
+    x2 = x.reshape(n, P, 5)
+    if flank_bounds:
+        def te_of(p2, i, j):
+            return drive * (-(prob.gear_angle(p2, pairs[j]) - phi2_mean) - ratio * (phi1[i] - phi1_mean))
+
+        x_edge, te_edge, labels = edge_stage(prob, x2, sp2, te2, te_of, phi1, pairs, tol=min(tol, 1e-11),
+                                              te_tie=te_tie)
+    else:
+        x_edge, te_edge, labels = np.full((n, P, 5), np.nan), np.full((n, P), np.nan), {}
+    has_edge = np.isfinite(te_edge)
+    # a pair's status: OK/LINE (surface contact of the real flanks), EDGE (edge contact solved: its TE, points on the
+    # boundary curve and the touched flank), NO_CONTACT
+    sp2 = np.where(sp2 == ContactStatus.EDGE, int(ContactStatus.NO_CONTACT), sp2)
+    sp2 = np.where(has_edge, int(ContactStatus.EDGE), sp2)
+    te2 = np.where(has_edge, te_edge, np.where((sp2 == ContactStatus.OK) | (sp2 == ContactStatus.LINE), te2, np.nan))
+    if np.any(has_edge):
+        fe = np.flatnonzero(has_edge.reshape(-1))
+        x[fe] = x_edge.reshape(-1, 5)[fe]
+        q1, q2 = x[fe, 0:2], x[fe, 2:4]
+        e1 = surface_derivatives(pinion, q1)
+        e2 = surface_derivatives(gear, q2)
+        r1[fe], n1[fe], dr1[fe], dn1[fe] = e1
+        r2[fe], n2[fe], dr2[fe], dn2[fe] = e2
+        R1[fe], R2[fe] = prob.pose(phi_eff[fe], x[fe, 4])[:2]
+        n1f[fe] = np.einsum("mij,mj->mi", R1[fe], n1[fe])
+        pf[fe] = o1 + np.einsum("mij,mj->mi", R1[fe], r1[fe])
+        phi2[fe] = prob.gear_angle(x[fe, 4], kk[fe])
+        valid[fe] = True
+        res[fe] = 0.0
+    if not np.any(np.isfinite(te2)):
+        raise NoContactError(f"no contact of the real flanks at any of the {n} positions phi1 in "
+                             f"[{phi1[0]:.6g}, {phi1[-1]:.6g}] rad")
+    # pair in contact: the largest TE (it leads the gear) among the contacts of the real flanks, surface or edge
+    score = np.where(np.isfinite(te2), te2, -np.inf)
+    anyv = np.any(np.isfinite(te2), axis=1)
+    # ties (several pairs within te_tie of the largest TE, e.g. line contact of conjugate flanks): a surface contact
+    # before an edge contact of the same line, then the first pair in `pairs` order
+    tmax = np.max(score, axis=1, keepdims=True)
+    tie = score >= tmax - te_tie
+    rank = np.where(tie, np.where(sp2 == ContactStatus.EDGE, 1, 2), 0)
+    sel = np.where(anyv, np.argmax(rank, axis=1), -1)
     status = np.where(anyv, sp2[np.arange(n), np.maximum(sel, 0)], int(ContactStatus.NO_CONTACT))
-    # where the extended surfaces of a pair would touch before the best physical contact, that pair's real flanks end
-    # first: the contact there is an edge contact of the boundary crossed (or the physical contact, whichever leads),
-    # which this surface-to-surface solution does not resolve: status EDGE, no TE reported at that position
-    ext = np.where(sp2 == ContactStatus.EDGE, te2, -np.inf)
-    best_phys = np.max(score, axis=1)
-    j_ext = np.argmax(ext, axis=1)
-    edge_pos = np.max(ext, axis=1) > best_phys + te_tie
-    status = np.where(edge_pos, int(ContactStatus.EDGE), status)
-    i_edge = np.flatnonzero(edge_pos)
-    edges = []
-    if i_edge.size:
-        fl = i_edge * P + j_ext[i_edge]
-        e1 = surface_edge(pinion, x[fl, 0:2])
-        e2 = surface_edge(gear, x[fl, 2:4])
-        for a, i in enumerate(i_edge):
-            member = "pinion" if e1[a] else "gear"
-            edges.append((int(i), int(pairs[j_ext[i]]), member, str(e1[a] or e2[a] or "flank")))
+    edge_pos = status == ContactStatus.EDGE
+    edges = [(int(i), int(pairs[sel[i]])) + tuple(labels[(int(i), int(sel[i]))][:2]) for i in np.flatnonzero(edge_pos)]
     # ellipses at the selected contacts
     flat = np.arange(n) * P + np.maximum(sel, 0)
     nocon_or_edge = ~anyv | edge_pos
@@ -355,21 +378,16 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     dirs2 = np.einsum("mji,mkj->mki", R2[flat], dirs)
     for arr in (lam, axes_, dirs1, dirs2):
         arr[nocon_or_edge] = np.nan
-    # transfer points: where the pair in contact changes
-    transfers = []
-    for i in range(n - 1):
-        a, b = sel[i], sel[i + 1]
-        # a change of pair across an edge contact (status EDGE) is not a crossing of two surface contacts
-        if a >= 0 and b >= 0 and a != b and not (edge_pos[i] or edge_pos[i + 1]):
-            d0 = te2[i, b] - te2[i, a]
-            d1 = te2[i + 1, b] - te2[i + 1, a]
-            if np.isfinite(d0) and np.isfinite(d1) and max(abs(d0), abs(d1)) <= te_tie:
-                continue  # shared contact (tie), not a transfer
-            if np.isfinite(d0) and np.isfinite(d1) and d1 != d0:
-                f = min(max(-d0 / (d1 - d0), 0.0), 1.0)
-                transfers.append(phi1[i] + (phi1[i + 1] - phi1[i]) * f)
-            else:
-                transfers.append(0.5 * (phi1[i] + phi1[i + 1]))
+    # transfer points: where the pair in contact changes, at the exact crossing of the two pairs' TE curves
+    kinds = np.full((n, P), -1)
+    for (i, j), lab in labels.items():
+        kinds[i, j] = 2 * lab[3] + lab[2]
+
+    def te_of_phi(p2, k, phi):
+        return drive * (-(prob.gear_angle(p2, k) - phi2_mean) - ratio * (phi - phi1_mean))
+
+    transfers, transfer_te = exact_transfers(prob, phi1, sel, te2, x.reshape(n, P, 5), kinds, pairs, te_of_phi,
+                                             tol=tol, te_tie=te_tie)
 
     def rs(a, k=None):
         return a.reshape((n, P) + a.shape[1:])
@@ -380,6 +398,6 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         params1=rs(x[:, 0:2]), params2=rs(x[:, 2:4]), point1=rs(r1), normal1=rs(n1), point2=rs(r2), normal2=rs(n2),
         point_fixed=rs(pf), normal_fixed=rs(n1f), residual=rs(res), pair=sel, status=status,
         semi_axes=axes_, ellipse_dirs1=dirs1, ellipse_dirs2=dirs2, relative_curvatures=lam,
-        approach=float(approach), transfer_phi1=np.array(transfers), z1=z1, z2=z2,
+        approach=float(approach), transfer_phi1=np.asarray(transfers), transfer_te=np.asarray(transfer_te), z1=z1, z2=z2,
         shaft_angle=prob.shaft_angle, iterations=int(iters), edges=tuple(edges),
     )

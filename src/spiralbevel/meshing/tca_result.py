@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import IntEnum
 
 import numpy as np
@@ -80,7 +80,10 @@ class TCAResult:
     approach : float, mm
         Elastic approach used for the ellipses.
     transfer_phi1 : (t,) float, rad
-        Pinion rotations where the pair in contact changes (linear interpolation of the TE difference).
+        Pinion rotations where the pair in contact changes: the exact crossing of the two pairs' TE curves
+        (:mod:`spiralbevel.meshing.tca_transfer`; the middle of the interval where the curves do not cross).
+    transfer_te : (t,) float, rad
+        TE at those crossings (the envelope's kinks; NaN where the curves do not cross).
     z1, z2 : int
     shaft_angle : float, rad
     iterations : int
@@ -120,12 +123,13 @@ class TCAResult:
     shaft_angle: float
     iterations: int
     edges: tuple = ()
+    transfer_te: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     # ------------------------------------------------------------------ selected contact
     def _pick(self, arr):
         arr = np.asarray(arr)
         out = np.full((arr.shape[0],) + arr.shape[2:], np.nan)
-        ok = (self.pair >= 0) & (np.asarray(self.status) != ContactStatus.EDGE)
+        ok = self.pair >= 0
         out[ok] = arr[np.nonzero(ok)[0], self.pair[ok]]
         return out
 
@@ -170,10 +174,29 @@ class TCAResult:
         return self.status == ContactStatus.EDGE
 
     @property
+    def envelope_te(self) -> np.ndarray:
+        """(m,) float, rad: the TE of the contact envelope at the positions with contact and at the exact transfer
+        points (the kinks between positions): the values its extremes are taken over."""
+        te = np.concatenate([self.te, np.asarray(self.transfer_te, float)])
+        return te[np.isfinite(te)]
+
+    @property
+    def te_max(self) -> float:
+        """Largest TE of the contact envelope (positions and transfer points), rad."""
+        te = self.envelope_te
+        return float(te.max()) if te.size else float("nan")
+
+    @property
+    def te_min(self) -> float:
+        """Smallest TE of the contact envelope (positions and transfer points, where the envelope has its kinks),
+        rad."""
+        te = self.envelope_te
+        return float(te.min()) if te.size else float("nan")
+
+    @property
     def peak_to_peak(self) -> float:
-        """Peak-to-peak TE of the contact envelope over positions with contact, rad."""
-        te = self.te[np.isfinite(self.te)]
-        return float(te.max() - te.min()) if te.size else float("nan")
+        """Peak-to-peak TE of the contact envelope over positions with contact and the transfer points, rad."""
+        return self.te_max - self.te_min
 
     def summary(self) -> str:
         n = len(self.phi1)

@@ -36,7 +36,7 @@ def _outline_lines(outline):
     return [(np.asarray(line, float), f"boundary {i}") for i, line in enumerate(outline)]
 
 
-def _tooth_panel(ax, title, outline, path, ellipses, status_ok):
+def _tooth_panel(ax, title, outline, path, ellipses, status_ok, edge=None):
     for line, label in _outline_lines(outline):
         q = project_axial_radial(line)
         ax.plot(q[:, 0], q[:, 1], "k-", lw=1.0)
@@ -44,8 +44,9 @@ def _tooth_panel(ax, title, outline, path, ellipses, status_ok):
         ax.annotate(label, m, fontsize=7, color="0.3")
     q = project_axial_radial(path)
     ax.plot(q[status_ok, 0], q[status_ok, 1], "o-", ms=2.5, lw=1.0, color="C3", label="contact path")
-    if (~status_ok).any():
-        ax.plot(q[~status_ok, 0], q[~status_ok, 1], "x", ms=4, color="C7", label="edge / no contact")
+    edge = np.zeros(len(q), bool) if edge is None else edge
+    if edge.any():
+        ax.plot(q[edge, 0], q[edge, 1], "x", ms=4, color="C3", label="edge contact")
     for e in ellipses:
         qe = project_axial_radial(e)
         ax.plot(qe[:, 0], qe[:, 1], "-", lw=0.7, color="C0")
@@ -83,9 +84,20 @@ def plot_tca(result, outline1=None, outline2=None, axes=None, ellipse_every=4, n
     x = result.phi1 - result.phi1_mean
     for j, k in enumerate(result.pairs):
         ax_te.plot(x, result.te_pairs[:, j] / ARCSEC, "--", lw=0.8, label=f"pair {k}")
-    ax_te.plot(x, result.te / ARCSEC, "k-", lw=2.0, label="in contact")
-    for t in result.transfer_phi1:
-        ax_te.axvline(t - result.phi1_mean, color="0.6", lw=0.6)
+    # the envelope through the exact transfer points (its kinks between positions)
+    tt = np.asarray(result.transfer_phi1, float) - result.phi1_mean
+    te_t = np.asarray(getattr(result, "transfer_te", np.full(tt.shape, np.nan)), float)
+    xe = np.r_[x, tt[np.isfinite(te_t)]]
+    ye = np.r_[result.te, te_t[np.isfinite(te_t)]]
+    o = np.argsort(xe, kind="stable")
+    ax_te.plot(xe[o], ye[o] / ARCSEC, "k-", lw=2.0, label="in contact")
+    edge = np.asarray(result.status) == 2  # ContactStatus.EDGE
+    if edge.any():
+        names = sorted({f"{m} {e}" for _, _, m, e in getattr(result, "edges", ())})
+        ax_te.plot(x[edge], result.te[edge] / ARCSEC, "s", ms=3.5, mfc="none", color="C3",
+                   label="edge contact" + (f" ({', '.join(names)})" if names else ""))
+    for t in tt:
+        ax_te.axvline(t, color="0.6", lw=0.6)
     ax_te.set_xlabel("pinion rotation phi1 - phi10 (rad)")
     ax_te.set_ylabel("transmission error (arcsec)")
     ax_te.set_title("transmission error")
@@ -104,7 +116,8 @@ def plot_tca(result, outline1=None, outline2=None, axes=None, ellipse_every=4, n
             continue
         for p, d, out in ((p1, result.ellipse_dirs1, ell1), (p2, result.ellipse_dirs2, ell2)):
             out.append(p[i] + a * np.cos(t) * d[i, 0] + b * np.sin(t) * d[i, 1])
-    _tooth_panel(ax1, "pinion flank", outline1, p1, ell1, status_ok)
-    _tooth_panel(ax2, "gear flank", outline2, p2, ell2, status_ok)
+    edge_at = ok & (np.asarray(result.status) == 2)
+    _tooth_panel(ax1, "pinion flank", outline1, p1, ell1, status_ok, edge_at)
+    _tooth_panel(ax2, "gear flank", outline2, p2, ell2, status_ok, edge_at)
     fig.tight_layout()
     return fig

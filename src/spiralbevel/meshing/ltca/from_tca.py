@@ -106,6 +106,24 @@ def segment_compliance(convex, concave, z: int, side: str, *, material: Material
 
 
 # ---------------------------------------------------------------------------------------------------- positions
+def _contains(surface, params):
+    """The surface's ``contains`` (True where it has none); NaN parameters are outside."""
+    from ..contact_surface import surface_contains
+
+    params = np.asarray(params, float)
+    fin = np.all(np.isfinite(params), axis=-1)
+    return fin & surface_contains(surface, np.where(fin[..., None], params, 0.0))
+
+
+def _on_edge(surface, params, tol=1e-8):
+    """True where ``params (m, 2)`` lie on a boundary of the surface's real flank (a margin within ``tol``)."""
+    if not hasattr(surface, "boundary_margins"):
+        return np.zeros(len(params), bool)
+    with np.errstate(invalid="ignore"):
+        g = np.asarray(surface.boundary_margins(params), float)
+    return np.any(np.abs(g) < tol, axis=-1)
+
+
 def _pair_states(pinion, gear, kinematics, tca, misalignment):
     """Pair-frame contact data of every valid (position, pair) of the TCA."""
     prob = ContactProblem(pinion, gear, kinematics, misalignment)
@@ -113,10 +131,11 @@ def _pair_states(pinion, gear, kinematics, tca, misalignment):
         raise DesignError.single("kinematics", (prob.z1, prob.z2), f"the TCA's (z1, z2) = ({tca.z1}, {tca.z2})", "-",
                                  "loaded TCA")
     k = np.asarray(tca.pairs, int)
-    # pairs whose unloaded contact lies off a flank (EDGE: a point of the analytically extended surfaces) are not
-    # loaded: edge contact is not modelled, and the separations around such a point are not those of the teeth
+    # every contact of the real flanks is loaded, surface (OK, LINE) or edge (EDGE: a boundary curve of one flank
+    # against the other flank; its separations are those of the touched flank and the edge member's flank, whose
+    # cells beyond the edge are dropped in contact_positions)
     status = np.asarray(tca.status_pairs)
-    valid = (status != ContactStatus.NO_CONTACT) & (status != ContactStatus.EDGE) & np.isfinite(tca.te_pairs)
+    valid = (status != ContactStatus.NO_CONTACT) & np.isfinite(tca.te_pairs)
     ii, jj = np.nonzero(valid)
     phi1 = tca.phi1[ii]
     phi2 = tca.phi2_pairs[ii, jj]
@@ -128,6 +147,9 @@ def _pair_states(pinion, gear, kinematics, tca, misalignment):
     mv = lambda R, v: np.einsum("mij,mj->mi", R, v)  # noqa: E731
     P, n = o1 + mv(R1, r1), mv(R1, n1)
     P2 = o2 + mv(R2, r2)
+    # at an edge of the pinion the contact normal is the touched gear flank's (outward from the pinion: -n2)
+    pin_edge = _on_edge(prob.pinion, x[:, 0:2]) & (status[ii, jj] == ContactStatus.EDGE)
+    n = np.where(pin_edge[:, None], -mv(R2, n2), n)
     gap = max(np.max(np.abs(P - tca.point_fixed[ii, jj]), initial=0.0), np.max(np.abs(P2 - P), initial=0.0))
     if gap > 1e-6 * (1.0 + np.max(np.abs(P), initial=0.0)):
         raise DesignError.single("misalignment / surfaces", f"contact points {gap:.3e} mm apart",
@@ -237,7 +259,10 @@ def contact_positions(pinion, gear, kinematics, tca, *, misalignment=None, grid=
     sep = posed_separations(prob.pinion, prob.gear, (st["R1"], st["o1"]), (st["R2"], st["o2"]),
                             tca.params1[st["ii"], st["jj"]], tca.params2[st["ii"], st["jj"]], st["P"], st["n"],
                             st["e1"], s, t)
-    w = [_Tabulated(s[a], t[a], sep.w[a]) for a in range(m)]
+    # potential contact points whose foot lies off either real flank carry no load (beyond a top edge, the toe, the
+    # heel or the fillet junction there is no tooth surface): NaN separations are dropped by the driver
+    on = _contains(prob.pinion, sep.params1) & _contains(prob.gear, sep.params2)
+    w = [_Tabulated(s[a], t[a], np.where(on[a], sep.w[a], np.nan)) for a in range(m)]
     n_pos, n_pairs = tca.te_pairs.shape
     table = [[None] * n_pairs for _ in range(n_pos)]
     for a in range(m):

@@ -1,0 +1,290 @@
+"""Edge contact of TCA: a boundary curve of one member's real flank against the flank of the other.
+
+Where the contact of two tooth surfaces would lie beyond a flank boundary (top edge, toe, heel, fillet junction),
+the real teeth first touch along that boundary: the boundary curve c(t) of member A (on A's flank) meets the flank
+of member B. As the gear turns back onto the pinion, every point c(t) would touch B at its own gear rotation; the
+first touch is the point of the curve where that rotation leads furthest, a stationary point along the curve,
+where B's normal is orthogonal to the curve's tangent. With the curve given implicitly on A's parameter plane by
+its signed margin g(q_A) = 0 (the surfaces' ``boundary_margins``), the unknowns x = (q1, q2, phi2_eff) of the
+surface contact solve the five equations
+
+    o1 + R1(phi1) r1(q1) - o2 - R2(phi2) r2(q2) = 0          (3, mm: the curve point lies on B)
+    g(q_A) = 0                                              (1: the point lies on A's boundary)
+    n_B . t_A = 0,  t_A = R_A (r_A,u g_v - r_A,v g_u)/|.|     (1: tangency of the curve to B)
+
+(the same unknowns and assembly pose as the surface contact of :mod:`spiralbevel.meshing.contact_problem`). The
+Jacobian is by forward differences, stacked into one batched evaluation per Newton iteration; the boundary
+gradient (g_u, g_v) likewise. Edge solves are few (only pairs whose surface contact leaves a flank), so their cost
+is small next to the surface solve.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .contact_surface import surface_derivatives
+
+__all__ = ["solve_edge_contacts", "project_to_boundary"]
+
+#: central-difference steps of the boundary gradient and of the Jacobian (surface parameters, rad of phi2)
+_H_PARAM = 1e-6
+_H_PHI = 1e-8
+
+
+def _margin_and_grad(surface, q, e):
+    """g(q) and its gradient (..., 2) for boundary index ``e (...)`` by central differences (one stacked call)."""
+    h = _H_PARAM
+    st = np.stack([q, q + (h, 0), q - (h, 0), q + (0, h), q - (0, h)], 0)  # (5, ..., 2)
+    with np.errstate(invalid="ignore"):
+        g = np.asarray(surface.boundary_margins(st), float)  # (5, ..., k)
+    g = np.take_along_axis(g, np.broadcast_to(e[None, ..., None], g.shape[:-1] + (1,)), -1)[..., 0]
+    return g[0], np.stack([(g[1] - g[2]) / (2 * h), (g[3] - g[4]) / (2 * h)], -1)
+
+
+def project_to_boundary(surface, q, e, iterations=4):
+    """Points of boundary ``e (m,)`` near the parameters ``q (m, 2)``: Newton steps along the margin gradient."""
+    q = np.array(q, float)
+    for _ in range(iterations):
+        g, dg = _margin_and_grad(surface, q, e)
+        with np.errstate(all="ignore"):
+            q = q - (g / np.einsum("mi,mi->m", dg, dg))[:, None] * dg
+    return q
+
+
+def _residual(prob, x, phi1_eff, member, e):
+    """F (m, 5) of the edge equations at x (m, 5); member (m,) 0 = pinion edge against the gear flank, 1 = gear
+    edge against the pinion flank; e (m,) boundary index of that member's ``boundary_names``."""
+    r1, n1, dr1, _ = surface_derivatives(prob.pinion, x[:, 0:2])
+    r2, n2, dr2, _ = surface_derivatives(prob.gear, x[:, 2:4])
+    R1, R2, o1, o2 = prob.pose(phi1_eff, x[:, 4])
+    F = np.empty(x.shape[:-1] + (5,))
+    F[:, 0:3] = o1 + np.einsum("mij,mj->mi", R1, r1) - o2 - np.einsum("mij,mj->mi", R2, r2)
+    g = np.full(len(x), np.nan)
+    dg = np.full((len(x), 2), np.nan)
+    for m, surf, sl in ((0, prob.pinion, slice(0, 2)), (1, prob.gear, slice(2, 4))):
+        s = member == m
+        if s.any():
+            g[s], dg[s] = _margin_and_grad(surf, x[s, sl], e[s])
+    pin = (member == 0)[:, None]
+    drA = np.where(pin[..., None], dr1, dr2)
+    RA = np.where(pin[..., None], R1, R2)
+    nB = np.where(pin, np.einsum("mij,mj->mi", R2, n2), np.einsum("mij,mj->mi", R1, n1))
+    t = drA[..., 0] * dg[:, 1:2] - drA[..., 1] * dg[:, 0:1]
+    t = np.einsum("mij,mj->mi", RA, t)
+    with np.errstate(all="ignore"):
+        t = t / np.linalg.norm(t, axis=-1, keepdims=True)
+    F[:, 3] = g
+    F[:, 4] = np.einsum("mi,mi->m", nB, t)
+    return F
+
+
+def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30):
+    """Newton solution of the edge-contact equations (module docstring) for a batch of systems.
+
+    Parameters
+    ----------
+    prob : ContactProblem
+        The assembled pair (surfaces with ``boundary_margins``).
+    phi1_eff : (m,) float, rad
+        Effective pinion rotations (pair k: phi1 + 2 pi k / z1).
+    x0 : (m, 5) float
+        Starting points (q1, q2, phi2_eff), e.g. the surface contact beyond the boundary.
+    member : (m,) int
+        0: a boundary curve of the pinion against the gear flank; 1: of the gear against the pinion flank.
+    edge : (m,) int
+        Index into that member's ``boundary_names``.
+    tol : float, mm
+        Tolerance on the point coincidence (the boundary equation to 1e-12, the tangency to 1e-9: the
+        boundary gradient is a central difference, and the TE is stationary there).
+
+    Returns
+    -------
+    x : (m, 5) float
+    converged : (m,) bool
+    """
+    phi1_eff = np.asarray(phi1_eff, float)
+    x = np.array(x0, float)
+    member = np.asarray(member, int)
+    edge = np.asarray(edge, int)
+    m = len(x)
+    if m == 0:
+        return x, np.zeros(0, bool)
+    hvec = np.array([_H_PARAM] * 4 + [_H_PHI])
+    conv = np.zeros(m, bool)
+    active = np.ones(m, bool)
+    for _ in range(max_iter):
+        a = np.flatnonzero(active)
+        if not a.size:
+            break
+        xa = x[a]
+        # centre and +h along each unknown, one stacked evaluation (6 per system; forward differences: the
+        # Jacobian only steers Newton, the residual is exact)
+        pert = np.concatenate([np.zeros((1, 5)), np.diag(hvec)], 0)  # (6, 5)
+        xs = (xa[:, None, :] + pert[None]).reshape(-1, 5)
+        rep = lambda v: np.repeat(v, 6, axis=0)  # noqa: E731
+        Fs = _residual(prob, xs, rep(phi1_eff[a]), rep(member[a]), rep(edge[a])).reshape(len(a), 6, 5)
+        F = Fs[:, 0]
+        J = np.swapaxes((Fs[:, 1:6] - F[:, None]) / hvec[None, :, None], 1, 2)  # (k, 5 eq, 5 unknowns)
+        done = (np.max(np.abs(F[:, 0:3]), axis=1) < tol) & (np.abs(F[:, 3]) < 1e-12) & (np.abs(F[:, 4]) < 1e-9)
+        bad = ~np.all(np.isfinite(F), axis=1) | ~np.all(np.isfinite(J), axis=(1, 2))
+        conv[a[done & ~bad]] = True
+        active[a[done | bad]] = False
+        go = ~done & ~bad
+        if not go.any():
+            break
+        with np.errstate(all="ignore"):
+            try:
+                dx = np.linalg.solve(J[go], -F[go][..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                dx = np.stack([np.linalg.lstsq(Jk, -Fk, rcond=None)[0] for Jk, Fk in zip(J[go], F[go])])
+        # limit the step (parameters: 2 units; phi2: 0.05 rad): far starts are not trusted to converge
+        lim = np.array([2.0, 2.0, 2.0, 2.0, 0.05])
+        with np.errstate(divide="ignore"):
+            s = np.min(np.where(np.abs(dx) > lim, lim / np.abs(dx), 1.0), axis=1, initial=1.0)
+        x[a[go]] = xa[go] + s[:, None] * dx
+    return x, conv
+
+
+def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_tie=1e-11):
+    """Edge contacts of every tooth pair whose surface contact leaves a real flank, and of the positions next to
+    them where the surface contact is lost altogether.
+
+    Parameters
+    ----------
+    prob : ContactProblem
+    x : (n, P, 5) float
+        Surface-contact solutions (q1, q2, phi2_eff) per position and pair.
+    status : (n, P) int
+        :class:`~spiralbevel.meshing.tca_result.ContactStatus` of the surface contacts (EDGE: the solution of the
+        extended surfaces lies beyond a flank boundary).
+    te_surface : (n, P) float, rad
+        TE of the surface contacts (of the extended surfaces where ``status`` is EDGE).
+    te_of : callable
+        ``te_of(phi2_eff (m,), i (m,), j (m,)) -> (m,)`` TE (rad) of pair j at position i.
+    phi1 : (n,) float, rad
+    pairs : (P,) int
+    tol : float, mm
+        Tolerance of the edge solves.
+    te_tie : float, rad
+        TE differences below this are ties (a pair within te_tie of the best real contact may still lead).
+
+    Returns
+    -------
+    x_edge : (n, P, 5) float
+        Edge-contact solutions (NaN where none).
+    te_edge : (n, P) float, rad
+        Their TE (NaN where none).
+    label : dict
+        (i, j) -> (member "pinion"/"gear" whose boundary touches, boundary name, member index 0/1, boundary index).
+
+    Notes
+    -----
+    Candidates at a pair whose surface contact is EDGE and does not trail the best real contact of another pair: every named boundary of both members (but the end of the
+    generated surface), started from the extended solution projected onto that boundary. A solution counts if the
+    edge point lies on the rest of its own flank's boundary segment (every other margin >= 0), the touched point on
+    the other member's real flank, the flank normals of the two members are opposed and the TE is within half a gear
+    pitch. Then a march over positions: a pair without a valid contact next to a position where its edge contact
+    leads the surface contacts of the other pairs is solved from that neighbour (the same edge), until no new one
+    is found (edge contacts that lead nowhere do not decide the contact and are not followed).
+    """
+    from .contact_surface import surface_contains
+
+    n, P = status.shape
+    T1 = 2 * np.pi / prob.z1
+    surfs = (prob.pinion, prob.gear)
+    names = [tuple(getattr(s, "boundary_names", ())) for s in surfs]
+    x_edge = np.full((n, P, 5), np.nan)
+    te_edge = np.full((n, P), np.nan)
+    label = {}
+    if not all(names):
+        return x_edge, te_edge, label
+
+    def try_solve(ii, jj, mem, ee, x0):
+        if not len(ii):
+            return np.zeros(0, bool)
+        phi_eff = phi1[ii] + pairs[jj] * T1
+        xs, conv = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
+        ok = conv.copy()
+        with np.errstate(invalid="ignore"):
+            g1 = np.asarray(prob.pinion.boundary_margins(xs[:, 0:2]), float)
+            g2 = np.asarray(prob.gear.boundary_margins(xs[:, 2:4]), float)
+        tolm = 1e-9
+        for m, g in ((0, g1), (1, g2)):
+            s = mem == m
+            gg = g[s].copy()
+            gg[np.arange(s.sum()), ee[s]] = np.inf  # the edge's own margin is 0 by construction
+            ok[s] &= np.all(np.nan_to_num(gg, nan=-1.0) >= -tolm, axis=1)
+        ok &= np.where(mem == 0, surface_contains(prob.gear, xs[:, 2:4]), surface_contains(prob.pinion, xs[:, 0:2]))
+        _, n1 = prob.pinion.evaluate(xs[:, 0:2])
+        _, n2 = prob.gear.evaluate(xs[:, 2:4])
+        R1, R2, _, _ = prob.pose(phi_eff, xs[:, 4])
+        with np.errstate(invalid="ignore"):
+            ok &= np.einsum("mi,mi->m", np.einsum("mij,mj->mi", R1, n1), np.einsum("mij,mj->mi", R2, n2)) < -0.5
+            te = te_of(xs[:, 4], ii, jj)
+            ok &= np.abs(te) < np.pi / prob.z2
+        new = np.zeros(len(ii), bool)
+        for a in np.flatnonzero(ok):
+            i, j = int(ii[a]), int(jj[a])
+            if not np.isfinite(te_edge[i, j]) or te[a] > te_edge[i, j]:
+                te_edge[i, j], x_edge[i, j] = te[a], xs[a]
+                label[(i, j)] = (("pinion", "gear")[mem[a]], names[mem[a]][ee[a]], int(mem[a]), int(ee[a]))
+                new[a] = True
+        return new
+
+    # 1. pairs whose surface contact lies beyond a boundary: the boundaries crossed there on either member, and the
+    # boundary of the other member that meets it (a top edge runs into the mate's root: fillet junction)
+    phys = (status == 0) | (status == 1)
+    te_phys = np.where(phys, te_surface, -np.inf)
+    # an edge contact trails the extended surfaces' contact beyond that edge (it is a touch of a part of the same
+    # flank): pairs whose extended contact trails the best real contact of another pair cannot lead, are not solved
+    best_other = np.array([[np.max(np.delete(te_phys[i], j), initial=-np.inf) for j in range(P)] for i in range(n)])
+    ii, jj = np.nonzero((status == 2) & ~(te_surface < best_other - te_tie))  # ContactStatus.EDGE
+    mate = {"top": ("fillet", "root"), "fillet": ("top",), "root": ("top",)}
+    I, Jp, M, E = [], [], [], []
+    if ii.size:
+        with np.errstate(invalid="ignore"):
+            g = [np.asarray(surfs[0].boundary_margins(x[ii, jj, 0:2]), float),
+                 np.asarray(surfs[1].boundary_margins(x[ii, jj, 2:4]), float)]
+        for a in range(ii.size):
+            want = set()
+            for m in (0, 1):
+                for e in np.flatnonzero(~(g[m][a] >= 0)):
+                    nm = names[m][e]
+                    if nm == "generated":
+                        continue
+                    want.add((m, int(e)))
+                    for other in mate.get(nm, ()):
+                        if other in names[1 - m]:
+                            want.add((1 - m, names[1 - m].index(other)))
+            for m, e in sorted(want):
+                I.append(ii[a]), Jp.append(jj[a]), M.append(m), E.append(e)
+    if I:
+        I, Jp, M, E = (np.array(v, int) for v in (I, Jp, M, E))
+        try_solve(I, Jp, M, E, x[I, Jp])
+    # 2. march to neighbouring positions without a contact of the real flanks (the surface contact of the pair is
+    # lost there altogether), from the neighbour's edge solution
+    def leads(i, j):
+        """Pair j's edge contact at position i leads the surface contacts of the other pairs there."""
+        return te_edge[i, j] >= np.max(np.delete(te_phys[i], j), initial=-np.inf)
+
+    front = {key for key in label if leads(*key)}
+    while front:
+        cand = {}
+        for (i, j) in front:
+            _, _, m, e = label[(i, j)]
+            for d in (-1, 1):
+                k = i + d
+                if 0 <= k < n and not phys[k, j] and (k, j) not in label and (k, j) not in cand:
+                    x0 = x_edge[i, j].copy()
+                    x0[4] -= prob.ratio * (phi1[k] - phi1[i])
+                    cand[(k, j)] = (m, e, x0)
+        if not cand:
+            break
+        keys = list(cand)
+        I = np.array([k[0] for k in keys])
+        Jp = np.array([k[1] for k in keys])
+        M = np.array([cand[k][0] for k in keys])
+        E = np.array([cand[k][1] for k in keys])
+        new = try_solve(I, Jp, M, E, np.array([cand[k][2] for k in keys]))
+        front = {(int(I[a]), int(Jp[a])) for a in np.flatnonzero(new) if leads(int(I[a]), int(Jp[a]))}
+    return x_edge, te_edge, label

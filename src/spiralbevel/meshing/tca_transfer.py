@@ -1,0 +1,132 @@
+"""Transfer points of TCA found exactly: where the TE curves of the two pairs that hand over the contact cross.
+
+Between two positions where the pair in contact changes from a to b, the transfer is the root of
+d(phi1) = TE_b(phi1) - TE_a(phi1), each TE from its own contact solved at that phi1 (a surface contact by the
+Newton solver of :class:`~spiralbevel.meshing.contact_problem.ContactProblem`, an edge contact by
+:func:`~spiralbevel.meshing.tca_edge.solve_edge_contacts`), not interpolated between the positions. The root is
+bracketed by the two positions and found by the Illinois variant of regula falsi, all transfers of a cycle at once.
+The TE there is the envelope's local minimum (the kink where the curves cross), which a sampled envelope misses by
+O(spacing): it is reported with the transfer and enters the extremes of the TE curve.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .tca_edge import solve_edge_contacts
+
+__all__ = ["exact_transfers"]
+
+
+def _te_at(prob, phi, pair_k, kind, x0, te_of_phi, tol):
+    """TE (m,) and solutions (m, 5) of pairs at pinion rotations phi (m,): kind (m,) -1 surface contact, else
+    (member, edge) encoded as 2 * edge + member for an edge contact."""
+    phi_eff = phi + 2 * np.pi * pair_k / prob.z1
+    x = np.array(x0, float)
+    ok = np.zeros(len(phi), bool)
+    s = kind < 0
+    if s.any():
+        xs, conv, *_ = prob.newton(phi_eff[s], x[s], tol=tol)
+        x[s], ok[s] = xs, conv
+    e = ~s
+    if e.any():
+        xe, conv = solve_edge_contacts(prob, phi_eff[e], x[e], kind[e] % 2, kind[e] // 2, tol=tol)
+        x[e], ok[e] = xe, conv
+    te = np.where(ok, te_of_phi(x[:, 4], pair_k, phi), np.nan)
+    return te, x
+
+
+def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10, te_tie=1e-11, iterations=40):
+    """Transfer points (rotations and TE) of a TCA cycle.
+
+    Parameters
+    ----------
+    prob : ContactProblem
+    phi1 : (n,) float, rad
+    sel : (n,) int
+        Index of the pair in contact per position (-1: none).
+    te2 : (n, P) float, rad
+        TE of each pair's contact (NaN where none).
+    x2 : (n, P, 5) float
+        The contacts' solutions.
+    kinds : (n, P) int
+        -1 for a surface contact, 2 * edge + member for an edge contact.
+    pairs : (P,) int
+    te_of_phi : callable
+        ``te_of_phi(phi2_eff, k, phi1) -> TE`` (rad) for pair k at pinion rotation phi1.
+
+    Returns
+    -------
+    transfer_phi1 : (t,) float, rad
+    transfer_te : (t,) float, rad
+        TE at the crossing (NaN where the curves do not cross: the leading pair's contact ends there and the TE
+        jumps; the rotation is then the middle of the interval).
+    """
+    n = len(phi1)
+    jobs = []
+    for i in range(n - 1):
+        a, b = sel[i], sel[i + 1]
+        if a < 0 or b < 0 or a == b:
+            continue
+        d0 = te2[i, b] - te2[i, a]
+        d1 = te2[i + 1, b] - te2[i + 1, a]
+        if np.isfinite(d0) and np.isfinite(d1) and max(abs(d0), abs(d1)) <= te_tie:
+            continue  # shared contact (tie), not a transfer
+        jobs.append((i, a, b))
+    if not jobs:
+        return np.zeros(0), np.zeros(0)
+    m = len(jobs)
+    I = np.array([j[0] for j in jobs])
+    A = np.array([j[1] for j in jobs])
+    B = np.array([j[2] for j in jobs])
+    lo, hi = phi1[I].astype(float), phi1[I + 1].astype(float)
+    # each pair's contact at the other end of the interval: solved from its own solution where it is missing
+    ta_hi, tb_lo = te2[I + 1, A].copy(), te2[I, B].copy()
+    xa, xb = x2[I, A].copy(), x2[I + 1, B].copy()
+    ka, kb = kinds[I, A], kinds[I + 1, B]
+    miss_a, miss_b = ~np.isfinite(ta_hi), ~np.isfinite(tb_lo)
+    if miss_a.any() or miss_b.any():
+        na = int(miss_a.sum())
+        t, _ = _te_at(prob, np.r_[hi[miss_a], lo[miss_b]], np.r_[pairs[A[miss_a]], pairs[B[miss_b]]],
+                      np.r_[ka[miss_a], kb[miss_b]], np.concatenate([xa[miss_a], xb[miss_b]]), te_of_phi, tol)
+        ta_hi[miss_a], tb_lo[miss_b] = t[:na], t[na:]
+    d_lo = tb_lo - te2[I, A]
+    d_hi = te2[I + 1, B] - ta_hi
+    cross = np.isfinite(d_lo) & np.isfinite(d_hi) & (np.sign(d_lo) != np.sign(d_hi))
+    phi_t = 0.5 * (lo + hi)
+    te_t = np.full(m, np.nan)
+    side = np.zeros(m, int)
+    for _ in range(iterations):
+        c = np.flatnonzero(cross)
+        if not c.size:
+            break
+        with np.errstate(all="ignore"):
+            p = hi[c] - d_hi[c] * (hi[c] - lo[c]) / (d_hi[c] - d_lo[c])
+        p = np.where(np.isfinite(p) & (p > lo[c]) & (p < hi[c]), p, 0.5 * (lo[c] + hi[c]))
+        t, xn = _te_at(prob, np.r_[p, p], np.r_[pairs[A[c]], pairs[B[c]]], np.r_[ka[c], kb[c]],
+                       np.concatenate([xa[c], xb[c]]), te_of_phi, tol)
+        ta, tb, xa_new, xb_new = t[:c.size], t[c.size:], xn[:c.size], xn[c.size:]
+        d = tb - ta
+        good = np.isfinite(d)
+        xa[c[good]], xb[c[good]] = xa_new[good], xb_new[good]
+        phi_t[c] = p
+        te_t[c] = np.where(good, np.maximum(ta, tb), np.nan)
+        # lost a contact inside the interval: stop at the best estimate
+        cross[c[~good]] = False
+        c, d, p = c[good], d[good], p[good]
+        # |d| < 5e-11 rad = 1e-5 arcsec: with TE slopes of the order of 100 arcsec/rad the crossing's TE is then
+        # within 1e-5 arcsec too
+        done = (np.abs(d) < 5e-11) | ((hi[c] - lo[c]) < 1e-12)
+        # Illinois: halve the retained end's value when the same end is kept twice
+        left = np.sign(d) == np.sign(d_lo[c])
+        for sel_, keep_end in ((left, 1), (~left, -1)):
+            cc = c[sel_]
+            if keep_end == 1:  # root in [p, hi]
+                lo[cc], d_lo[cc] = p[sel_], d[sel_]
+                d_hi[cc] = np.where(side[cc] == 1, 0.5 * d_hi[cc], d_hi[cc])
+            else:
+                hi[cc], d_hi[cc] = p[sel_], d[sel_]
+                d_lo[cc] = np.where(side[cc] == -1, 0.5 * d_lo[cc], d_lo[cc])
+            side[cc] = keep_end
+        cross[c[done]] = False
+    return phi_t, te_t
