@@ -11,12 +11,15 @@ import re
 
 from ..errors import DesignError, Problem
 
-_NUM = re.compile(r"[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
+# a number standing alone (not the digit of a name such as "k1" or "delta2"), and "pi" or "pi/2" as whole words only
+_NUM = re.compile(r"(?<![\w.])[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?(?![\w.])")
+_PI = re.compile(r"\bpi(/2)?\b")
 
 
 def _deg_text(text: str) -> str:
-    """Numbers in an allowed-range text, read as rad, rewritten in degrees ("pi/2" too)."""
-    text = text.replace("pi/2", "\x00").replace("pi", "\x01")
+    """Numbers in an allowed-range text, read as rad, rewritten in degrees ("pi/2" and "pi" as words too; "pitch
+    angle" stays as it is)."""
+    text = _PI.sub(lambda m: "\x00" if m.group(1) else "\x01", text)
     text = _NUM.sub(lambda m: f"{math.degrees(float(m.group())):.6g}", text)
     return text.replace("\x00", "90").replace("\x01", "180")
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..conventions import Member, Side
 from . import facemilled as fm
 from . import outputs
+from .partial import attempt, mark_failed
 
 
 def run_facemilled(spec, blank, out, steps, report, summary):
@@ -31,10 +32,19 @@ def run_facemilled(spec, blank, out, steps, report, summary):
     with steps.step("tooth contact analysis"):
         from .tca import run_pair_tca
 
-        from .tca import misalignment_sensitivity
+        from .tca import SENSITIVITY, misalignment_sensitivity
 
         tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids)
-        report["tca"]["misalignment_sensitivity"] = misalignment_sensitivity(blank, setups, "drive")
+        for name in ("drive", "coast"):
+            mark_failed(summary.partial, report["tca"][name], f"TCA, {name} side")
+        sens, failed = attempt(summary.partial, "misalignment sensitivity", misalignment_sensitivity, blank, setups,
+                               "drive")
+        report["tca"]["misalignment_sensitivity"] = failed or sens
+        if failed is None:
+            mark_failed(summary.partial, sens, "misalignment sensitivity, aligned")
+            for case in SENSITIVITY:
+                if isinstance(sens.get(case[0]), dict):
+                    mark_failed(summary.partial, sens[case[0]], f"misalignment sensitivity, {case[0]} case")
         if cmc:
             from ..meshing.synthesis.cmc_design import te_summary
 
@@ -58,8 +68,11 @@ def run_facemilled(spec, blank, out, steps, report, summary):
         with steps.step("loaded TCA (FE compliance, load sharing)"):
             from .ltca import run_ltca_job
 
-            ltca_result, report["ltca"] = run_ltca_job(spec, blank, setups)
+            out_lt, failed = attempt(summary.partial, f"loaded TCA, {spec.ltca.side} side", run_ltca_job, spec,
+                                     blank, setups)
+            ltca_result, report["ltca"] = out_lt if failed is None else (None, failed)
             lt = report["ltca"]
+        if failed is None:
             summary.highlights.append(
                 f"LTCA {lt['side']}: torque {lt['torque_Nm']:.2f} N m (approach 0.00635 mm at "
                 f"{lt['torque_for_approach_Nm']:.2f} N m), loaded TE {lt['max_loaded_transmission_error_arcsec']:.3f} "
