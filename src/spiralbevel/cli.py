@@ -131,7 +131,10 @@ def run(
     out: Path = typer.Option(Path("out"), "-o", "--out", help="Output directory (written whole or not at all)."),
     quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar."),
 ):
-    """Compute everything the design asks for and write report.json, plots, STL, STEP and tool paths."""
+    """Compute everything the design asks for and write report.json, plots, STL, STEP and tool paths.
+
+    OUT must be new, empty, or a previous spiralbevel output (it holds the manifest .spiralbevel-output.json); any
+    other directory is refused (exit 2). OUT is replaced whole, or not at all."""
     spec = _load(design)
     from .job import run_design
 
@@ -156,6 +159,10 @@ def blank(
     from .io.dimension_sheet import dimension_sheet_json, dimension_sheet_rows
     from .job.blank import blank_from_design
 
+    if output is not None:
+        from .io.atomic import check_output_file
+
+        check_output_file(output)
     spec = _load(design)
     result = blank_from_design(spec)
     if as_json or output is not None:
@@ -253,6 +260,10 @@ def sweep(
     if side not in ("drive", "coast"):
         raise DesignError.single("--side", side, "'drive' or 'coast'", "-")
     check_scheduler(scheduler)
+    if output is not None:
+        from .io.atomic import check_output_file
+
+        check_output_file(output)
     spec = _load(design)
     records = misalignment_sweep(spec, grid, side=side, scheduler=scheduler)
     table = Table(title=f"Misalignment sweep, {side} side ({len(records)} TCA runs)")

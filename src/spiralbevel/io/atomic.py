@@ -40,7 +40,8 @@ import tempfile
 from pathlib import Path
 from typing import Iterator
 
-__all__ = ["atomic_write_text", "atomic_write_bytes", "atomic_directory", "recover_directory", "NotRegularFileError",
+__all__ = ["atomic_write_text", "atomic_write_bytes", "atomic_directory", "recover_directory", "check_output_file",
+           "NotRegularFileError",
            "ForeignDirectoryError", "OUTPUT_MARKER"]
 
 #: name of the manifest that marks a directory as a spiralbevel output (written last, before the swap)
@@ -49,12 +50,28 @@ OUTPUT_MARKER = ".spiralbevel-output.json"
 _TAG = "spiralbevel-"
 
 
-class NotRegularFileError(OSError):
+class NotRegularFileError(FileExistsError):
     """An output path names something other than a regular file (link, directory, FIFO, device); left untouched."""
 
 
 class ForeignDirectoryError(FileExistsError):
     """An output directory is not empty and was not written by spiralbevel; left untouched."""
+
+
+def check_output_file(path: "str | os.PathLike[str]") -> Path:
+    """Check, before any work, that ``path`` can take a single-file output: its directory exists and ``path`` is
+    missing or a regular file (not a link, directory, FIFO or device). Returns the path.
+
+    Raises
+    ------
+    NotRegularFileError, FileNotFoundError
+    """
+    target = Path(path)
+    parent = target.parent if str(target.parent) else Path(".")
+    if not parent.is_dir():
+        raise FileNotFoundError(errno.ENOENT, "its directory does not exist", str(target))
+    _check_replaceable_file(target)
+    return target
 
 
 def _check_replaceable_file(target: Path) -> None:
@@ -111,7 +128,7 @@ def atomic_write_bytes(path: "str | os.PathLike[str]", data: bytes) -> Path:
     file systems) and is removed if anything fails. The permission bits of an existing target are kept.
 
     Only a regular file is ever replaced: an existing symbolic link, directory, FIFO, socket or device node at
-    ``path`` raises :class:`NotRegularFileError` (an ``OSError``) and is left as it is, so ``--output /dev/null``
+    ``path`` raises :class:`NotRegularFileError` (a ``FileExistsError``) and is left as it is, so ``--output /dev/null``
     can never replace the real ``/dev/null``.
     """
     target = Path(path)

@@ -121,7 +121,7 @@ def load_matrix(cache_dir, key: str, n: int):
     if not path.is_file():
         return None
     try:
-        with np.load(path, allow_pickle=False) as data:
+        with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as data:
             G = np.array(data["G"])
             asym = float(data["asymmetry"])
             stored = str(data["checksum"])
