@@ -48,3 +48,22 @@ def restated(err: DesignError, paths: dict, default: str | None = None) -> Desig
             unit = "deg"
         out.append(Problem(new, value, allowed, unit, p.reason))
     return type(err)(out)
+
+
+def with_design_keys(err: DesignError, section: str, context: str = "") -> DesignError:
+    """A DesignError whose every problem names a design-file key: a field that is not already a dotted path into the
+    design file (``grid(face station)``, ``locate(axial, radius)``: names of the computational layers) is shown as
+    ``section (field, context)``, ``section`` being the design-file section that controls it."""
+    from ..io.design_schema import DesignFile
+
+    heads = set(DesignFile.model_fields) | {"design file", "-o/--out"}
+    out, changed = [], False
+    for p in err.problems:
+        head = p.field.split(".", 1)[0].split(" ", 1)[0].split(":", 1)[0]
+        if p.field and head not in heads and not p.field.startswith("--"):
+            extra = f", {context}" if context else ""
+            out.append(Problem(f"{section} ({p.field}{extra})", p.value, p.allowed, p.unit, p.reason))
+            changed = True
+        else:
+            out.append(p)
+    return type(err)(out) if changed else err

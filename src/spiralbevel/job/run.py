@@ -9,7 +9,9 @@ from pathlib import Path
 from .. import __version__
 from ..io.design_schema import DesignFile
 from .blank import blank_from_design
+from ..errors import DesignError
 from .partial import PartialLog
+from .problems import with_design_keys
 from .progress import Steps
 
 
@@ -49,16 +51,25 @@ def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
     A failing secondary analysis (conjugacy check, TCA of one side, loaded TCA, a misalignment case) does not stop the
     run: its report entry says ``"status": "failed"`` with the reason, and ``summary.partial`` lists it.
     """
-    from ..io.atomic import OUTPUT_MARKER, atomic_directory
-    from ..io.dimension_sheet import dimension_sheet_json
-    from ..io.report import write_report
-
     out = Path(out)
     summary = RunSummary(out=out)
     kind = spec.flank.kind
     n_steps = 2 + (_logspiral_steps(spec) if kind == "log-spiral" else _facemilled_steps(spec))
     manifest = {"written_by": "spiralbevel", "spiralbevel_version": __version__, "title": spec.title}
-    with atomic_directory(out, marker=OUTPUT_MARKER, manifest=manifest) as tmp, Steps(n_steps, progress) as steps:
+    section = "gear_set" if kind == "log-spiral" else "face_milling"
+    steps = Steps(n_steps, progress)
+    try:
+        return _run(spec, out, summary, kind, steps, manifest)
+    except DesignError as err:
+        raise with_design_keys(err, section, f"in the step '{steps.current}'") from err
+
+
+def _run(spec, out, summary, kind, steps, manifest):
+    from ..io.atomic import OUTPUT_MARKER, atomic_directory
+    from ..io.dimension_sheet import dimension_sheet_json
+    from ..io.report import write_report
+
+    with atomic_directory(out, marker=OUTPUT_MARKER, manifest=manifest) as tmp, steps:
         tmp = Path(tmp)
         with steps.step("blank geometry (ISO 23509)"):
             blank = blank_from_design(spec)
