@@ -12,10 +12,12 @@ missing parents; sweep values and scheduler addresses).
 Reported (and the exit status is 1 unless all are 0):
 
 - tracebacks: an exception escaping the CLI, exit code 4 (internal error), or "Traceback" in the output;
-- hangs: an input still running after ``--timeout`` seconds (stopped by SIGALRM);
+- hangs: an input that used more than ``--timeout`` seconds of CPU time (stopped by SIGPROF; CPU time, not wall
+  time, so that the figure does not depend on what else the shared machine runs), or more than ``--wall`` seconds
+  of wall time (stopped by SIGALRM: a hang that sleeps or waits);
 - exit codes outside the documented set {0, 1, 2, 3};
-- touched: a file or directory of the sandbox outside the output paths and the cache that was created, changed or
-  deleted (the sandbox holds decoy files: a user's project directory, a FIFO, a link and its target), and any new
+- touched: a file or directory of the sandbox outside the command's output (the OUT of ``run``, the ``--output``
+  file) and the cache that was created, changed or deleted (the sandbox holds decoy files: a user's project directory, a FIFO, a link and its target), and any new
   entry in the system temporary directory.
 """
 
@@ -27,6 +29,7 @@ import contextlib
 import json
 import os
 import random
+import re
 import signal
 import sys
 import tempfile
@@ -43,11 +46,11 @@ OUT_KINDS = ("new", "previous", "foreign", "empty", "dot", "file", "missing_pare
 
 
 class Hang(BaseException):
-    """Raised by SIGALRM: not an Exception, so no handler of the CLI catches it."""
+    """Raised by SIGPROF or SIGALRM: not an Exception, so no handler of the CLI catches it."""
 
 
 def _on_alarm(signum, frame):
-    raise Hang()
+    raise Hang("cpu" if signum == signal.SIGPROF else "wall")
 
 
 def mutate_design(rng: random.Random, texts: list) -> bytes:
@@ -136,20 +139,38 @@ class Sandbox:
         self.tmp = root / "tmp"                  # the temporary directory of the process (tempfile.tempdir)
         self.tmp.mkdir()
 
-    def snapshot(self) -> dict:
+    def snapshot(self, outputs=()) -> dict:
+        """{path: (mode, size, mtime)} of everything outside the cache, the inputs and ``outputs``."""
+        allowed = self.allowed + [Path(o) for o in outputs]
         snap = {}
         for dirpath, dirnames, filenames in os.walk(self.root):
             p = Path(dirpath)
-            if any(p == a or a in p.parents for a in self.allowed):
+            if any(p == a or a in p.parents for a in allowed):
                 dirnames[:] = []
                 continue
             for name in dirnames + filenames:
                 q = p / name
-                if any(q == a or a in q.parents for a in self.allowed):
+                if any(q == a or a in q.parents for a in allowed):
                     continue
                 st = os.lstat(q)
                 snap[str(q)] = (st.st_mode, st.st_size, st.st_mtime_ns)
         return snap
+
+
+def outputs_of(argv, cwd: Path) -> list:
+    """The paths a command may write: the OUT of ``run`` (``-o``/``--out``, default ``out``) and the ``--output``
+    file of ``blank`` and ``sweep``, relative to ``cwd``."""
+    outs = []
+    if argv and argv[0] == "run":
+        value = "out"
+        for i, a in enumerate(argv[:-1]):
+            if a in ("-o", "--out"):
+                value = argv[i + 1]
+        outs.append(value)
+    for i, a in enumerate(argv[:-1]):
+        if a == "--output":
+            outs.append(argv[i + 1])
+    return [Path(os.path.abspath(cwd / o)) for o in outs]
 
 
 def make_case(rng: random.Random, texts: list, box: Sandbox, k: int):
@@ -177,7 +198,7 @@ def make_case(rng: random.Random, texts: list, box: Sandbox, k: int):
     else:
         out_arg = str(out / f"o{k % 7}")
     single = rng.choice([str(out / "b.json"), str(box.root / "fifo.json"), str(box.root / "link.json"),
-                         str(box.victim), str(out / "none" / "b.json")])
+                         str(box.root / "cwd"), str(out / "none" / "b.json")])
     cmd = rng.choices(["check", "blank", "machine", "run", "sweep", "correct", "cache", "args"],
                       weights=[45, 12, 6, 6, 12, 4, 2, 3])[0]
     if cmd == "check":
@@ -188,11 +209,14 @@ def make_case(rng: random.Random, texts: list, box: Sandbox, k: int):
     if cmd == "machine":
         return ["machine", design_arg]
     if cmd == "run":
-        # outputs off and a small grid keep a valid run to a few seconds; the output path is the point here
-        text = design.read_bytes()
+        # outputs and the loaded TCA (a FE solve of about 40 s) off, and a small grid, keep a valid run to a few
+        # seconds: the output path is the point here
+        text = re.sub(rb"\n\[ltca\][^\[]*", b"\n", design.read_bytes())
         for key in (b"plots", b"stl", b"step", b"toolpaths", b"draft"):
             text = text.replace(key + b" = true", key + b" = false")
         design.write_bytes(text.replace(b"grid = [31, 15]", b"grid = [5, 3]"))
+        if not design_arg.startswith("/nonexistent"):
+            design_arg = str(design)         # a bundled name would run every output and the FE solve
         return ["run", design_arg, "-q", "-o", out_arg]
     if cmd == "sweep":
         args = ["sweep", rng.choice([design_arg, "aviation_23x65_synthesized"])]
@@ -222,7 +246,8 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=2000)
     ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--timeout", type=float, default=10.0)
+    ap.add_argument("--timeout", type=float, default=10.0, help="CPU seconds per input that count as a hang")
+    ap.add_argument("--wall", type=float, default=60.0, help="wall seconds per input that count as a hang")
     ap.add_argument("--keep", action="store_true", help="keep the sandbox")
     args = ap.parse_args(argv)
 
@@ -245,28 +270,35 @@ def main(argv=None) -> int:
     tracebacks, hangs, touched, bad_codes = [], [], [], []
     slowest = (0.0, None)
     signal.signal(signal.SIGALRM, _on_alarm)
+    signal.signal(signal.SIGPROF, _on_alarm)
+    slowest_cpu = 0.0
     t_start = time.perf_counter()
     for k in range(args.n):
         argv_k = make_case(rng, texts, box, k)
-        before = box.snapshot()
-        t0 = time.perf_counter()
-        signal.setitimer(signal.ITIMER_REAL, args.timeout)
+        outputs = outputs_of(argv_k, box.cwd)
+        before = box.snapshot(outputs)
+        t0, c0 = time.perf_counter(), time.process_time()
+        signal.setitimer(signal.ITIMER_PROF, args.timeout)
+        signal.setitimer(signal.ITIMER_REAL, args.wall)
         try:
             res = runner.invoke(app, argv_k, catch_exceptions=True)
             code, output, exc = res.exit_code, res.output, res.exception
-        except Hang:
-            hangs.append(argv_k)
+        except Hang as h:
+            hangs.append({"argv": argv_k, "kind": str(h)})
+            print(f"hang ({h}): {argv_k}", flush=True)
             code, output, exc = None, "", None
         finally:
+            signal.setitimer(signal.ITIMER_PROF, 0)
             signal.setitimer(signal.ITIMER_REAL, 0)
         dt = time.perf_counter() - t0
+        slowest_cpu = max(slowest_cpu, time.process_time() - c0)
         slowest = max(slowest, (dt, argv_k[:2]), key=lambda t: t[0])
         codes[code] += 1
         if code == 4 or "Traceback" in output or (exc is not None and not isinstance(exc, SystemExit)):
             tracebacks.append({"argv": argv_k, "exc": repr(exc), "output": output[-500:]})
         elif code is not None and code not in (0, 1, 2, 3):
             bad_codes.append({"argv": argv_k, "code": code})
-        after = box.snapshot()
+        after = box.snapshot(outputs)
         changed = sorted(set(before) ^ set(after) | {p for p in before if p in after and before[p] != after[p]})
         if changed:
             touched.append({"argv": argv_k, "paths": changed[:5]})
@@ -280,7 +312,8 @@ def main(argv=None) -> int:
         "exit_codes": {str(c): n for c, n in sorted(codes.items(), key=lambda t: str(t[0]))},
         "tracebacks": len(tracebacks), "hangs": len(hangs), "undocumented_exit_codes": len(bad_codes),
         "touched_outside_out_and_cache": len(touched), "left_in_temporary_directory": new_tmp,
-        "decoys_intact": decoys_ok, "slowest_s": round(slowest[0], 2), "slowest_command": slowest[1],
+        "decoys_intact": decoys_ok, "slowest_wall_s": round(slowest[0], 2), "slowest_command": slowest[1],
+        "slowest_cpu_s": round(slowest_cpu, 2),
     }
     print(json.dumps(summary, indent=1))
     for name, items in (("traceback", tracebacks), ("hang", hangs), ("touched", touched), ("exit code", bad_codes)):

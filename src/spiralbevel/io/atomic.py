@@ -333,9 +333,13 @@ def atomic_directory(path: "str | os.PathLike[str]", marker: "str | None" = None
     recover_directory(target)
     _check_target(target, marker)
     tmp = Path(tempfile.mkdtemp(prefix=f".{name}.{_TAG}", suffix=".tmp", dir=parent))
-    fd = os.open(tmp, os.O_RDONLY)
     try:
-        _lock(fd, blocking=False)
+        fd = os.open(tmp, os.O_RDONLY)
+    except OSError:  # pragma: no cover - Windows cannot open directories: no lock
+        fd = None
+    try:
+        if fd is not None:
+            _lock(fd, blocking=False)
         try:
             yield tmp
             if marker is not None:
@@ -362,7 +366,8 @@ def atomic_directory(path: "str | os.PathLike[str]", marker: "str | None" = None
             shutil.rmtree(tmp, ignore_errors=True)
             raise
     finally:
-        os.close(fd)
+        if fd is not None:
+            os.close(fd)
 
 
 def _umask() -> int:
