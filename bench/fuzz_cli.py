@@ -17,7 +17,8 @@ Reported (and the exit status is 1 unless all are 0):
   of wall time (stopped by SIGALRM: a hang that sleeps or waits);
 - exit codes outside the documented set {0, 1, 2, 3};
 - touched: a file or directory of the sandbox outside the command's output (the OUT of ``run``, the ``--output``
-  file) and the cache that was created, changed or deleted (the sandbox holds decoy files: a user's project directory, a FIFO, a link and its target), and any new
+  file) and the cache (``$SPIRALBEVEL_CACHE``, and matplotlib's font cache ``$MPLCONFIGDIR`` in it) that was created,
+  changed or deleted (the sandbox holds decoy files: a user's project directory, a FIFO, a link and its target), and any new
   entry in the system temporary directory.
 """
 
@@ -31,6 +32,7 @@ import os
 import random
 import re
 import signal
+import stat
 import sys
 import tempfile
 import time
@@ -153,7 +155,9 @@ class Sandbox:
                 if any(q == a or a in q.parents for a in allowed):
                     continue
                 st = os.lstat(q)
-                snap[str(q)] = (st.st_mode, st.st_size, st.st_mtime_ns)
+                # a directory is compared by its entries (each listed here), not by its mtime, which changes when an
+                # allowed output is created inside it
+                snap[str(q)] = (st.st_mode,) if stat.S_ISDIR(st.st_mode) else (st.st_mode, st.st_size, st.st_mtime_ns)
         return snap
 
 
@@ -262,6 +266,8 @@ def main(argv=None) -> int:
     box = Sandbox(root)
     os.environ["HOME"] = str(root / "home")
     os.environ["SPIRALBEVEL_CACHE"] = str(box.cache)
+    # matplotlib's own font cache (written once, by the first plot) counts with the cache
+    os.environ["MPLCONFIGDIR"] = str(box.cache / "matplotlib")
     os.chdir(box.cwd)
     tmpdir = Path(tempfile.gettempdir())
     tempfile.tempdir = str(box.tmp)

@@ -119,3 +119,32 @@ def test_single_file_output_replaces_only_regular_files(tmp_path, kind):
     assert victim.read_text() == "precious"
     assert {"fifo": target.is_fifo(), "symlink": target.is_symlink(), "directory": target.is_dir()}[kind]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["b.json", "victim.txt"]
+
+
+def test_restated_ranges_keep_words_that_contain_pi():
+    # once "allowed 0 < value < 180tch angle": the "pi" inside "pitch" was read as the number pi
+    import math
+
+    from spiralbevel.errors import DesignError
+    from spiralbevel.job.problems import _deg_text, restated
+
+    assert _deg_text("0 < value < pitch angle = 0.5") == f"0 < value < pitch angle = {math.degrees(0.5):.6g}"
+    assert _deg_text("pitch angle = 0.5 < value < pi/2") == f"pitch angle = {math.degrees(0.5):.6g} < value < 90"
+    assert _deg_text("k1 < pi") == "k1 < 180"
+    err = restated(DesignError.single("boundaries[pinion].root_angle", 0.6, "0 < value < pitch angle = 0.5", "rad"),
+                   {"boundaries[pinion].": "gear_set.depth -> pinion blank"})
+    text = str(err)
+    assert "gear_set.depth -> pinion blank" in text and "pitch angle = 28.6479" in text and "tch" not in text.replace(
+        "pitch", "")
+
+
+def test_every_problem_names_a_design_file_key():
+    # computational names ("grid(face station)", "locate(axial, radius)") are shown under the section that controls
+    # them; design-file paths and options are left as they are
+    from spiralbevel.errors import DesignError, Problem
+    from spiralbevel.job.problems import with_design_keys
+
+    err = DesignError([Problem("grid(face station)", "15 of 31 points", "", "mm"),
+                       Problem("gear_set.module", -1, "> 0", "mm"), Problem("--offset", "x")])
+    fields = [p.field for p in with_design_keys(err, "face_milling", "in the step 'plots'").problems]
+    assert fields == ["face_milling (grid(face station), in the step 'plots')", "gear_set.module", "--offset"]
