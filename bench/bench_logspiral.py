@@ -2,7 +2,8 @@
 
 Baseline, measured in the same run: the generic numerical module (geometry/diffgeom.py, Richardson-extrapolated
 central differences) on the same surface. Both run single-threaded numpy on one core. The script checks that the two
-agree (relative curvature error) before printing points/s and the speed ratio.
+agree (relative curvature error) before printing points/s and the speed ratio. Both sides are timed the same way, the
+median of N runs (bench/_timing.py).
 
 Run: /work/venv/bin/python bench/bench_logspiral.py [n_points]
 """
@@ -10,9 +11,9 @@ Run: /work/venv/bin/python bench/bench_logspiral.py [n_points]
 from __future__ import annotations
 
 import sys
-import time
 
 import numpy as np
+from _timing import median_time
 
 from spiralbevel import LogSpiralFlank
 from spiralbevel._core import logspiral_flank as kernel
@@ -20,12 +21,7 @@ from spiralbevel.geometry.diffgeom import surface_geometry
 
 
 def best_of(fun, repeat=5):
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fun()
-        times.append(time.perf_counter() - t0)
-    return min(times)
+    return median_time(fun, repeat)[0]
 
 
 def main(n=1_000_000):
@@ -41,7 +37,7 @@ def main(n=1_000_000):
     t_public = best_of(lambda: flank.evaluate(varphi, phi))
 
     m = min(n, 200_000)
-    t_generic = best_of(lambda: surface_geometry(flank.point, varphi[:m], phi[:m], normal_sign=1.0), repeat=2)
+    t_generic = best_of(lambda: surface_geometry(flank.point, varphi[:m], phi[:m], normal_sign=1.0))
     num = surface_geometry(flank.point, varphi[:m], phi[:m], normal_sign=1.0)
     exact = flank.evaluate(varphi[:m], phi[:m])
     err = max(np.max(np.abs(num.k1 / exact.k1 - 1)), np.max(np.abs(num.k2 / exact.k2 - 1)))
@@ -52,6 +48,7 @@ def main(n=1_000_000):
     print(f"closed-form kernel, preallocated output : {rate_kernel / 1e6:8.2f} million points/s")
     print(f"LogSpiralFlank.evaluate (public, checks) : {rate_public / 1e6:8.2f} million points/s")
     print(f"generic numerical diffgeom (baseline)    : {rate_generic / 1e6:8.2f} million points/s")
+    print("(median of 5 runs each)")
     print(f"ratio kernel / generic: {rate_kernel / rate_generic:.1f}x   public / generic: "
           f"{rate_public / rate_generic:.1f}x")
 

@@ -1,14 +1,16 @@
 """Benchmark: local synthesis of the seed 001 pinion (Tables 1, 2, 4) — the whole ``synthesize_pinion`` call, and its
 settings fit (7 x 7 Newton, forward-difference Jacobian, ``_core.newton.solve_batched``) against
-``scipy.optimize.fsolve`` on the same residual from the same start. Run: ``python bench/bench_synthesis.py``.
+``scipy.optimize.fsolve`` on the same residual from the same start (forward differences on both sides: the settings
+have no analytic Jacobian). Both timed the same way, median of N runs (bench/_timing.py).
+Run: ``python bench/bench_synthesis.py``.
 """
 
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
+from _timing import median_time
 from scipy.optimize import fsolve
 
 from spiralbevel.conventions import Member, Side
@@ -22,13 +24,8 @@ from spiralbevel.meshing.synthesis.machine_fit import build, point_invariants
 ARCSEC = math.pi / (180 * 3600)
 
 
-def best_of(fun, repeat=5):
-    best, out = np.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fun()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
+def best_of(fun, repeat=7):
+    return median_time(fun, repeat)
 
 
 def main():
@@ -64,7 +61,7 @@ def main():
     ref = np.array([c.point_radius, c.blade_angle, s.radial_setting, s.cradle_angle, s.ratio_of_roll,
                     s.blank_offset, u])
     print(f"settings fit, solve_batched: {t_fit * 1e3:.1f} ms; scipy fsolve: {t_base * 1e3:.1f} ms "
-          f"(residual {ok:.1e}, max |x - x_newton| {np.abs(xb - ref).max():.1e}); ratio {t_base / t_fit:.2f}x")
+          f"(residual {ok:.1e}, max |x - x_newton| {np.abs(xb - ref).max():.1e}); ratio {t_base / t_fit:.2f}x (median of 7 runs each)")
 
 
 if __name__ == "__main__":

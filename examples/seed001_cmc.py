@@ -168,8 +168,9 @@ def main(argv=None):
               f"-3, paper {PAPER_MAX_TE}; deviation from the CMC on the controlled range "
               f"{t['controlled_range_deviation_arcsec']:.4f} arcsec")
         tr = s["tca_real_flanks"]
-        print(f"max TE (real edge radii) {tr['max_transmission_error_arcsec']:.4f} arcsec "
-              f"({tr['edge_contact_positions']} of {tr['positions']} positions with edge contact)")
+        print(f"max TE (real edge radii, surface contacts of the real flanks) {tr['max_transmission_error_arcsec']:.4f}"
+              f" arcsec ({tr['edge_contact_positions']} of {tr['positions']} positions with edge contact, not solved: "
+              f"no TE there)")
         figdir = Path(a.figures) if a.figures else outdir
         figdir.mkdir(parents=True, exist_ok=True)
         import matplotlib.pyplot as plt

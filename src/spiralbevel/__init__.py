@@ -31,6 +31,8 @@ _LAZY = {
     # manufacturing
     "draft_map": "manufacturing.draft", "plan_toolpath": "manufacturing.toolpath",
     "measurement_grid": "manufacturing.measurement", "correct_settings": "manufacturing.correction",
+    # load capacity (ISO 10300)
+    "rate_iso10300": "rating", "RatingInput": "rating", "RatingResult": "rating",
     # files and the main job
     "load_design": "io.design_file", "run_design": "job",
 }

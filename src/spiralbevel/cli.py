@@ -185,6 +185,46 @@ def blank(
 
 @app.command()
 @_guard
+def rate(
+    design: Optional[Path] = DesignArg,
+    as_json: bool = typer.Option(False, "--json", help="Print the rating as JSON keyed by ISO symbol (degrees)."),
+    output: Optional[Path] = typer.Option(None, "--output", help="Write the JSON to this file instead of stdout."),
+):
+    """Print the ISO 10300 (Method B1) load capacity rating sheet of a design with a [rating] section."""
+    from .job.rating import rating_from_design
+
+    spec = _load(design)
+    res = rating_from_design(spec)
+    if as_json or output is not None:
+        text = json.dumps({"standard": "ISO 10300:2014 Method B1", **res.to_dict()}, indent=2)
+        if output is not None:
+            from .io.atomic import atomic_write_text
+
+            atomic_write_text(output, text + "\n")
+            console.print(f"[green]wrote[/] {output}")
+        else:
+            sys.stdout.write(text + "\n")
+        return
+    titles = {"load": "Load", "virtual": "Virtual cylindrical gears (ISO 10300-1 Annex A)",
+              "factors": "Load factors (ISO 10300-1)", "pitting": "Pitting (ISO 10300-2, Method B1)",
+              "root": "Tooth root (ISO 10300-3, Method B1)"}
+    tables = {}
+    for section, sym, desc, unit, value in res.rows():
+        if section not in tables:
+            t = tables[section] = Table(title=f"{titles[section]}: {spec.title}" if not tables else titles[section])
+            for col in ("symbol", "quantity", "unit", "value"):
+                t.add_column(col, justify="right" if col == "value" else "left")
+        tables[section].add_row(sym, desc, unit, f"{value:.4f}")
+    for t in tables.values():
+        console.print(t)
+    console.print(f"S_H = {res['S_H']:.3f}   S_F1 = {res['S_F1']:.3f}   S_F2 = {res['S_F2']:.3f}",
+                  markup=False, highlight=False)
+    for note in res.notes:
+        console.print(f"note: {note}", markup=False, highlight=False)
+
+
+@app.command()
+@_guard
 def machine(design: Optional[Path] = DesignArg):
     """Print the machine summary sheet (cutter and cradle settings per member and side) of a face-milled design."""
     from .job.blank import blank_from_design

@@ -48,7 +48,7 @@ def test_pointed_teeth_raise_geometry_error_naming_the_top_land():
 
 def test_small_top_land_warns_with_toe_mean_heel_values():
     with pytest.warns(DesignWarning, match="top land") as rec:
-        bl = compute_blank(_inp(k_d=2.6, c_ham=0.1))
+        bl = compute_blank(_inp(k_d=2.4, c_ham=0.1))
     msgs = " ".join(str(w.message) for w in rec)
     assert "sam1" in msgs and "sae1" in msgs
     assert bl.sam1 == pytest.approx(top_land(bl, 1, "m")) and bl.sae1 < 0 < bl.sam1 < 0.2 * bl.mmn

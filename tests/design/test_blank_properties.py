@@ -27,7 +27,7 @@ def designs(draw):
     b = draw(st.floats(0.12, 0.3)) * re
     beta = R(draw(st.floats(0.0, 40.0)))
     rc0 = draw(st.floats(0.7, 2.0)) * (re - b / 2)
-    taper = draw(st.sampled_from(["duplex", "standard", "uniform"]))
+    taper = draw(st.sampled_from(["duplex", "trl", "standard", "uniform"]))
     alpha = R(draw(st.floats(17.0, 25.0)))
     return dict(z1=z1, z2=z2, shaft_angle=sigma, met=met, b=b, beta_m=beta, rc0=rc0, taper=taper,
                 alpha_dD=alpha, alpha_dC=alpha, hand1=draw(st.sampled_from([Hand.LEFT, Hand.RIGHT])))
@@ -63,6 +63,17 @@ def test_cone_and_depth_identities(kw):
     assert bl.Re2 - bl.Ri2 == pytest.approx(bl.b2, abs=1e-12)
     assert bl.theta_a1 == bl.theta_f2 and bl.theta_a2 == bl.theta_f1
     assert bl.hand2 is bl.hand1.opposite
+    for k in (1, 2):
+        g = lambda n: getattr(bl, f"{n}{k}")  # noqa: E731
+        # the heel tip point sits h_e above the heel root point along the pitch-cone normal, which makes the angle
+        # θf with the root-cone normal: its distance from the root cone is h_e·cos θf
+        if k == 2:  # the pinion's h_t1 follows the wheel's cones and the clearance (tests/design crosscheck)
+            assert g("ht") == pytest.approx(g("he") * math.cos(g("theta_f")), rel=1e-12, abs=1e-12)
+        assert g("dae") - g("dfe") == pytest.approx(2 * g("he") * math.cos(g("delta")), abs=1e-10)
+        assert g("dai") - g("dfi") == pytest.approx(2 * g("hi") * math.cos(g("delta")), abs=1e-10)
+        assert g("be") + g("bi") == pytest.approx(g("b"), abs=1e-12)
+        assert g("tz") == 0.0 and g("tzm") == pytest.approx(bl.Rm * math.cos(g("delta")), abs=1e-12)
+    assert bl.smn1 + bl.smn2 <= math.pi * bl.mmn + 1e-12  # backlash only thins the teeth
     crown = abs(math.cos(bl.delta2)) < 1e-12  # delta2 = 90 deg: the virtual gear is a rack (dvn2 = hlim2 = inf)
     for key, v in bl.to_dict().items():
         if isinstance(v, float):

@@ -31,7 +31,8 @@ def test_every_attribute_in_the_table_exists_and_names_are_unique(blank):
                 "mmn mmt beta_m1 beta_m2 beta_e1 beta_e2 beta_i1 beta_i2 alpha_nD alpha_nC alpha_e hmw ham1 ham2 hfm1 "
                 "hfm2 c hm theta_a1 theta_a2 theta_f1 theta_f2 delta_a1 delta_a2 delta_f1 delta_f2 hae1 hae2 hfe1 "
                 "hfe2 he1 he2 hai1 hai2 hfi1 hfi2 dae1 dae2 dai1 dai2 rc0 smn1 smn2 smt1 txo1 txo2 tzF1 tzF2 tzR1 "
-                "tzR2 smnc1 smnc2 hamc1 hamc2").split()
+                "tzR2 smnc1 smnc2 hamc1 hamc2 dfe1 dfe2 dfi1 dfi2 ht1 ht2 tzm1 tzm2 tz1 tz2 be1 be2 bi1 bi2 x_smn "
+                "x_sm1 x_sm2 sai1 sai2 sam1 sam2 sae1 sae2").split()
     assert set(required) <= set(names)
 
 
@@ -78,3 +79,22 @@ def test_glossary_lists_every_quantity():
     listed = set(re.findall(r"`([A-Za-z_0-9]+)`", text))
     missing = [n for n in attribute_names() if n not in listed]
     assert not missing, f"docs/glossary.md lacks {missing}"
+
+
+def test_cli_blank_json_shows_the_iso_quantities(tmp_path):
+    """`spiralbevel blank --json` carries the root diameters, h_t, t_zm, t_z and the thickness coefficients; the
+    values equal the blank's (tzm = Rm·cos δ: crossing point to mean point, not the pitch apex)."""
+    from typer.testing import CliRunner
+
+    from spiralbevel.cli import app
+
+    result = CliRunner().invoke(app, ["blank", "--json", "--output", str(tmp_path / "b.json")])
+    assert result.exit_code == 0, result.output
+    data = json.loads((tmp_path / "b.json").read_text())
+    for key in ("dfe1", "dfi1", "ht1", "tzm1", "tz1", "be1", "bi1", "x_sm1"):
+        assert key in data["pinion"] and key.replace("1", "2") in data["gear"], key
+    assert "x_smn" in data["pair"]
+    cos_d1 = math.cos(math.radians(data["pinion"]["delta1"]))
+    assert data["pinion"]["tzm1"] == pytest.approx(data["pair"]["Rm"] * cos_d1, rel=1e-12)
+    assert data["pinion"]["tz1"] == 0.0
+    assert data["units"]["dfe1"] == "mm" and data["units"]["x_sm1"] == "-"

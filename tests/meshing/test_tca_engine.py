@@ -131,8 +131,10 @@ def test_te_second_derivative_matches_direct_finite_difference(crowned, pair, ki
     assert tca == pytest.approx(direct, rel=1e-4)  # FD truncation of `direct`: O(h^2) ~ 1e-6 relative
 
 
-def test_transfer_points_and_path_continuity(crowned_result):
-    res = crowned_result
+def test_transfer_points_and_path_continuity(crowned, pair, kin):
+    # on the real flanks this crowned pair leaves the pinion flank before the TE curves cross (edge contact, see
+    # test_edge_positions_report_no_te): the crossing of the surface contacts is that of the extended surfaces
+    res = solve_tca(crowned, pair.gear, kin, flank_bounds=False)
     assert len(res.transfer_phi1) >= 1
     for pt in res.transfer_phi1:
         i = np.searchsorted(res.phi1, pt) - 1
@@ -182,3 +184,48 @@ def test_bad_input_design_error(pair, kin, kw, field):
 def test_te_units(crowned_result):
     np.testing.assert_allclose(crowned_result.te_arcsec * ARCSEC, crowned_result.te)
     assert ARCSEC == pytest.approx(np.radians(1 / 3600))
+
+
+def test_edge_positions_report_no_te(crowned_result, crowned, pair, kin):
+    """Only contacts on both real flanks count: where the extended surfaces of a pair would touch beyond a flank
+    boundary before the best real-flank contact, the position is EDGE (which pair, member and edge recorded) and
+    reports no TE; elsewhere the TE is that of a contact inside both flank domains."""
+    res = crowned_result
+    edge = res.status == ContactStatus.EDGE
+    assert edge.any() and len(res.edges) == edge.sum()
+    assert np.all(np.isnan(res.te[edge]))
+    ok = ~edge & (res.pair >= 0)
+    j = res.pair[ok]
+    i = np.flatnonzero(ok)
+    assert np.all(crowned.contains(res.params1[i, j])) and np.all(pair.gear.contains(res.params2[i, j]))
+    for idx, k, member, name in res.edges:
+        jj = list(res.pairs).index(k)
+        surf, q = (crowned, res.params1) if member == "pinion" else (pair.gear, res.params2)
+        g = surf.boundary_margins(q[idx, jj])
+        assert name == surf.boundary_names[int(np.argmin(g))] and g.min() < 0
+        # that pair's extended contact leads every real-flank contact at this position
+        phys = np.isin(res.status_pairs[idx], (ContactStatus.OK, ContactStatus.LINE))
+        assert res.te_pairs[idx, jj] > np.max(res.te_pairs[idx, phys], initial=-np.inf)
+    # the extended model (flank_bounds=False) reports the extended TE there instead
+    ext = solve_tca(crowned, pair.gear, kin, flank_bounds=False)
+    assert np.all(np.isfinite(ext.te)) and not np.any(ext.status == ContactStatus.EDGE)
+
+
+@pytest.mark.parametrize("crown", [(0.5, 0.0, 5.0), (2.0, 0.0, 1.0), (0.2, 0.0, 20.0)])
+def test_no_te_from_points_off_the_real_flanks(pair, kin, crown):
+    """Scan of crownings and the four misalignments: every reported TE comes from a contact whose two points lie on
+    the real flanks (the domains' contains), and every EDGE position names a crossed boundary."""
+    from spiralbevel.meshing.misalignment import Misalignment
+
+    surf = NormalDeviation(pair.pinion, quadratic_crowning(pair.pinion.reference_params, crown))
+    for mis in (None, Misalignment(pinion_axial=0.1), Misalignment(gear_axial=0.1), Misalignment(offset=0.1),
+                Misalignment(shaft_angle=np.radians(0.05))):
+        try:
+            res = solve_tca(surf, pair.gear, kin, misalignment=mis)
+        except NoContactError:
+            continue
+        fin = np.isfinite(res.te)
+        i, j = np.flatnonzero(fin), res.pair[fin]
+        assert np.all(surf.contains(res.params1[i, j])) and np.all(pair.gear.contains(res.params2[i, j]))
+        assert np.all(res.status[~fin] != ContactStatus.OK)
+        assert all(name in pair.gear.boundary_names for _, _, _, name in res.edges)

@@ -9,8 +9,9 @@ References
 ----------
 ISO 23509:2016 (= ANSI/AGMA ISO 23509-B17) clauses 5-6 for a = 0: pitch cone parameters, mean depths
 (data type I: hmw = k_d·mmn, c = k_c·hmw, ham2 = c_ham·hmw), addendum/dedendum angles, outer and inner depths,
-diameters, crown-to-crossing-point distances, tooth thickness; verified against Annex F.2 Sample 1
-(reference/iso23509-sample1.md) and seed 001 Table 1 (reference/ERRATA.md §1.2).
+diameters, crown-to-crossing-point distances, tooth thickness; verified against Annex F.2 Sample 1 and seed 001
+Table 1 (Liu, Chen, Li, Machines 2024, 12, 34); see tests/design/test_blank_sample1.py for which figures are
+published and which are checked by an independent construction.
 """
 
 from __future__ import annotations
@@ -23,9 +24,11 @@ from .blank_checks import check_blank, top_land
 from .blank_input import TAPERS, BlankInput
 from .blank_result import BevelBlank
 from .blank_taper import taper_angles
+from .blank_dimensions import member_dimensions, pinion_apex_distances
 from .blank_thickness import (
     chordal_values,
     mean_normal_thickness,
+    thickness_modification_coefficients,
     spiral_angle_at,
     undercut_limit_depth,
     virtual_normal_diameter,
@@ -91,13 +94,14 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
     -----
     Pitch cone: δ1 = atan2(sin Σ, cos Σ + u), δ2 = Σ − δ1; Re2 = de2/(2 sin δ2); Rm = Re2 − b2/2 (the design
     point at mid-face of the wheel, Rm1 = Rm2 = Rm); Ri2 = Re2 − b2; a wider pinion is extended equally at toe and
-    heel, Re1 = Rm + b1/2. mmn = dm2·cos βm / z2. Depths: hmw = k_d·mmn, c = k_c·hmw, hm = hmw + c,
-    ham2 = c_ham·hmw, ham1 = hmw − ham2, hfm1 = ham2 + c, hfm2 = ham1 + c. Cones: δa = δ + θa, δf = δ − θf;
-    hae = ham + (Re − Rm)·tan θa, hai = ham − (Rm − Ri)·tan θa (likewise hf). Diameters dae = de + 2·hae·cos δ.
-    Axial: txo = tzm + Re·cos δ − hae·sin δ, tzF = tzm − (Rm·sin θa − ham·cos θa)/sin δa,
-    tzR = tzm + (Rm·sin θf − hfm·cos θf)/sin δf, with tzm = 0 without offset (positive = beyond the crossing
-    point, away from the body). Backlash: jen = jet·cos βe2·cos αn; the mean normal circular thickness is reduced
-    in total by jet·(Rm/Re2)·cos βm, half per member; jmn = jen·(Rm/Re2)·cos βm/cos βe2.
+    heel, Re1 = Rm + b1/2. mmn = dm2·cos βm / z2. Depths (data type II): hmw = k_d·mmn, c = k_c·hmw, hm = hmw + c,
+    ham2 = c_ham·hmw, ham1 = hmw − ham2, hfm1 = ham2 + c, hfm2 = ham1 + c, x_hm1 = (ham1 − ham2)/(2·mmn). Heel and
+    toe dimensions, diameters and axial positions: :func:`~spiralbevel.design.blank_dimensions.member_dimensions`;
+    the pinion's face and root apexes and h_t1 from the wheel's cones and the clearance, as the standard does
+    (:func:`~spiralbevel.design.blank_dimensions.pinion_apex_distances`).
+    Thickness: x_smn = k_t/2; the outer normal backlash jen (or jet, jen = jet·cos βe2·cos αn) is taken half from
+    each member (x_sm1, x_sm2); smn from :func:`~spiralbevel.design.blank_thickness.mean_normal_thickness`;
+    jmn = jen·(Rm/Re2)·cos βm/cos βe2 is the mean normal backlash.
     """
     z1, z2 = inp.z1, inp.z2
     u = z2 / z1
@@ -122,8 +126,7 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
     alpha_nD = inp.alpha_dD + inp.f_alim * alpha_lim
     alpha_nC = inp.alpha_dC - inp.f_alim * alpha_lim
     alpha_eD, alpha_eC = alpha_nD - alpha_lim, alpha_nC + alpha_lim
-    tan_mean = 0.5 * (math.tan(alpha_nD) + math.tan(alpha_nC))
-    alpha_n = 0.5 * (alpha_nD + alpha_nC)
+    alpha_n = 0.5 * (alpha_nD + alpha_nC)  # ISO 23509 mean normal pressure angle
 
     c_ham = inp.c_ham_value
     hmw = inp.k_d * mmn
@@ -133,8 +136,8 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
     hfm1, hfm2 = ham2 + c, ham1 + c
     x_hm1 = (ham1 - ham2) / (2.0 * mmn)
 
-    ta = taper_angles(inp.taper, hfm1=hfm1, hfm2=hfm2, rm=rm, re2=re2, met=met, beta_m=beta_m, tan_alpha=tan_mean,
-                      rc0=inp.rc0, c_ham=c_ham,
+    ta = taper_angles(inp.taper, hfm1=hfm1, hfm2=hfm2, rm=rm, re2=re2, met=met, beta_m=beta_m,
+                      tan_alpha=math.tan(alpha_n), rc0=inp.rc0, c_ham=c_ham,
                       given={k: getattr(inp, k) for k in ("theta_a1", "theta_a2", "theta_f1", "theta_f2")})
     sum_used = ta.theta_f1 + ta.theta_f2
 
@@ -146,25 +149,19 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
                    beta_m2=beta_m, **betas, alpha_nD=alpha_nD, alpha_nC=alpha_nC, alpha_lim=alpha_lim,
                    alpha_eD=alpha_eD, alpha_eC=alpha_eC, alpha_e=0.5 * (alpha_eD + alpha_eC), hmw=hmw, c=c,
                    hm=hmw + c, x_hm1=x_hm1, ham1=ham1, ham2=ham2, hfm1=hfm1, hfm2=hfm2, sum_theta_f=sum_used,
-                   sum_theta_fS=ta.sum_theta_fS, sum_theta_fC=ta.sum_theta_fC, theta_a1=ta.theta_a1,
-                   theta_a2=ta.theta_a2, theta_f1=ta.theta_f1, theta_f2=ta.theta_f2)
+                   sum_theta_fS=ta.sum_theta_fS, sum_theta_fC=ta.sum_theta_fC, sum_theta_fM=ta.sum_theta_fM,
+                   theta_a1=ta.theta_a1, theta_a2=ta.theta_a2, theta_f1=ta.theta_f1, theta_f2=ta.theta_f2)
 
     for k, delta, re, ri in ((1, delta1, re1, ri1), (2, delta2, re2, ri2)):
-        tha, thf = q[f"theta_a{k}"], q[f"theta_f{k}"]
-        ham, hfm = q[f"ham{k}"], q[f"hfm{k}"]
-        be, bi = re - rm, rm - ri
-        hae, hfe = ham + be * math.tan(tha), hfm + be * math.tan(thf)
-        hai, hfi = ham - bi * math.tan(tha), hfm - bi * math.tan(thf)
-        da, df = delta + tha, delta - thf
-        sd, cd = math.sin(delta), math.cos(delta)
-        q.update({f"delta_a{k}": da, f"delta_f{k}": df, f"hae{k}": hae, f"hfe{k}": hfe, f"he{k}": hae + hfe,
-                  f"hai{k}": hai, f"hfi{k}": hfi, f"hi{k}": hai + hfi,
-                  f"dae{k}": q[f"de{k}"] + 2.0 * hae * cd, f"dai{k}": q[f"di{k}"] + 2.0 * hai * cd,
-                  f"tzm{k}": 0.0, f"txo{k}": re * cd - hae * sd, f"txi{k}": ri * cd - hai * sd,
-                  f"tzF{k}": -(rm * math.sin(tha) - ham * math.cos(tha)) / math.sin(da),
-                  f"tzR{k}": (rm * math.sin(thf) - hfm * math.cos(thf)) / math.sin(df) if df > 0 else math.inf})
+        dims = member_dimensions(delta=delta, rm=rm, re=re, ri=ri, theta_a=q[f"theta_a{k}"],
+                                 theta_f=q[f"theta_f{k}"], ham=q[f"ham{k}"], hfm=q[f"hfm{k}"])
+        q.update({f"{name}{k}": v for name, v in dims.items()})
+    # the standard takes the pinion's face and root apexes (and so h_t1) from the wheel's cones plus the clearance
+    q.update({f"{name}1": v for name, v in pinion_apex_distances(
+        delta1=delta1, rm=rm, theta_a1=q["theta_a1"], theta_f1=q["theta_f1"], ham2=ham2, hfm2=hfm2, c=c,
+        txo1=q["txo1"]).items()})
 
-    # backlash and thickness
+    # backlash and thickness (ISO 23509: x_smn = k_t/2 for data type II, backlash half from each member)
     cbe2 = math.cos(q["beta_e2"])
     if inp.jet is not None:
         jet = float(inp.jet)
@@ -172,14 +169,15 @@ def compute_blank(inp: BlankInput) -> BevelBlank:
     else:
         jen = float(inp.jen or 0.0)
         jet = jen / (cbe2 * math.cos(alpha_n))
-    jmt_n = jet * rm / re2 * math.cos(beta_m)  # normal circular thickness removed at the mean point, both members
-    smn1, smn2 = mean_normal_thickness(mmn, x_hm1, inp.k_t, math.tan(alpha_nD), math.tan(alpha_nC), jmt_n)
-    q.update(jen=jen, jet=jet, jmn=jmt_n * math.cos(alpha_n), smn1=smn1, smn2=smn2,
-             smt1=smn1 / math.cos(beta_m), smt2=smn2 / math.cos(beta_m))
+    x_smn = 0.5 * float(inp.k_t)
+    x_sm1, x_sm2 = thickness_modification_coefficients(x_smn, jen, mmn, rm, re2, beta_m, q["beta_e2"], alpha_n)
+    smn1, smn2 = mean_normal_thickness(mmn, x_hm1, x_sm1, x_sm2, alpha_n)
+    q.update(jen=jen, jet=jet, jmn=jen * rm * math.cos(beta_m) / (re2 * cbe2), x_smn=x_smn, x_sm1=x_sm1,
+             x_sm2=x_sm2, smn1=smn1, smn2=smn2, smt1=smn1 / math.cos(beta_m), smt2=smn2 / math.cos(beta_m))
     cos2 = math.cos(alpha_n) ** 2
     for k, delta in ((1, delta1), (2, delta2)):
         dvn = virtual_normal_diameter(rm, delta, beta_m, cos2)
-        smnc, hamc = chordal_values(q[f"smn{k}"], q[f"ham{k}"], dvn)
+        smnc, hamc = chordal_values(q[f"smn{k}"], q[f"ham{k}"], dvn, delta)
         q.update({f"dvn{k}": dvn, f"smnc{k}": smnc, f"hamc{k}": hamc,
                   f"hlim{k}": undercut_limit_depth(dvn, min(alpha_nD, alpha_nC))})
 

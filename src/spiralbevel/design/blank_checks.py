@@ -6,8 +6,8 @@ Criteria (all evaluated on the computed :class:`~spiralbevel.design.blank_result
 * **Dedendum / addendum** (error): a dedendum that is not positive at toe, mean point or heel, or a mean addendum
   that is negative; an addendum that vanishes at the toe; a root angle δf <= 0.
 * **Pointed teeth**: the normal top land at the mean point (virtual spur gear in the normal section) must be positive
-  (error); at the toe or heel, or below 0.2·m_n of the section anywhere, it is a warning. The toe and heel top lands
-  are estimates: the transverse thickness is scaled with the cone distance (teeth converging to the apex).
+  (error); at the toe or heel, or below 0.2·m_n of the section anywhere, it is a warning. The toe and heel thickness
+  follows the face-milling completing process (constant slot width at the root, :func:`normal_thickness`).
 * **Undercut of the pinion**: virtual spur gear in the normal section (dvn, ISO 10300-1); a straight rack flank
   generates involute only down to h_lim = (dvn/2)·sin²αn (αn the smaller flank angle) below the pitch line.
   Error if the depth that must be active at the mean point, ham2 (the wheel's tip reaches it), exceeds h_lim;
@@ -24,7 +24,7 @@ from ..errors import Problem
 from .blank_result import BevelBlank
 from .blank_thickness import tip_thickness, undercut_limit_depth, virtual_normal_diameter
 
-__all__ = ["check_blank", "top_land", "section_limit_depth"]
+__all__ = ["check_blank", "normal_thickness", "top_land", "section_limit_depth"]
 
 _MEMBER = {1: "pinion", 2: "wheel"}
 _MIN_TOPLAND = 0.2  # fraction of the normal module of the section
@@ -45,17 +45,50 @@ def _cos2_alpha(bl: BevelBlank) -> float:
     return math.cos(0.5 * (bl.alpha_nD + bl.alpha_nC)) ** 2
 
 
+def normal_thickness(bl: BevelBlank, k: int, where: str) -> float:
+    """Normal circular tooth thickness of member ``k`` on its pitch cone at ``where`` = 'i' (toe), 'm' or 'e' (heel).
+
+    Parameters
+    ----------
+    bl : BevelBlank
+        Computed blank.
+    k : {1, 2}
+        Member (1 pinion, 2 wheel).
+    where : {"i", "m", "e"}
+        Section: toe (Ri), mean point (Rm) or heel (Re).
+
+    Returns
+    -------
+    float, mm
+        s_n(R) = p_n(R) − e_n(R): normal circular pitch p_n(R) = π·mmt·(R/Rm)·cos β(R) minus the space width
+        e_n(R) = (π·mmn − smn) + (hf(R) − hfm)·(tan αnD + tan αnC).
+
+    Notes
+    -----
+    Face milling, completing process: the inner and outer blades of one head cut both flanks of a space and move on
+    concentric circles of the generating crown gear, so the space width at the root (the cutter point width) is the
+    same along the face; at the pitch line it is wider by the dedendum times the flank slopes. The duplex dedendum
+    angle sum of ISO 23509 is exactly the condition that the two members' spaces then grow with the pitch to first
+    order at the mean point (tests/design/test_blank_crosscheck.py checks this), which is why the same model gives
+    the toe and heel thickness behind the AGMA 929-style top lands below.
+    """
+    r, beta, _ha, hf = _section(bl, k, where)
+    pn = math.pi * bl.mmt * r / bl.Rm * math.cos(beta)
+    space_m = math.pi * bl.mmn - _g(bl, "smn", k)
+    return pn - space_m - (hf - _g(bl, "hfm", k)) * (math.tan(bl.alpha_nD) + math.tan(bl.alpha_nC))
+
+
 def top_land(bl: BevelBlank, k: int, where: str) -> float:
     """Normal top land width of member ``k`` (1, 2) at ``where`` = 'i' (toe), 'm' (mean) or 'e' (heel), mm.
 
-    Tip thickness of the virtual spur gear in the normal section (see ``blank_thickness.tip_thickness``); the
-    transverse circular thickness at cone distance R is smt·R/Rm.
+    Tip thickness of the virtual spur gear in the normal section of that cone distance (see
+    ``blank_thickness.tip_thickness``) with the pitch-line thickness of :func:`normal_thickness` and the local
+    addendum.
     """
     r, beta, ha, _hf = _section(bl, k, where)
     delta = _g(bl, "delta", k)
-    snx = _g(bl, "smt", k) * r / bl.Rm * math.cos(beta)
     dvn = virtual_normal_diameter(r, delta, beta, _cos2_alpha(bl))
-    return tip_thickness(dvn, snx, ha, bl.alpha_nD, bl.alpha_nC)
+    return tip_thickness(dvn, normal_thickness(bl, k, where), ha, bl.alpha_nD, bl.alpha_nC)
 
 
 def section_limit_depth(bl: BevelBlank, k: int, where: str) -> float:

@@ -21,8 +21,10 @@ from ..errors import DesignError, Problem
 __all__ = ["BlankInput", "TAPERS"]
 
 #: Depthwise taper systems: ``"given"`` (dedendum angles given, ISO data type II), ``"standard"`` (root lines through
-#: the pitch apex), ``"uniform"`` (constant depth), ``"duplex"`` (dedendum angle sum from the cutter radius).
-TAPERS = ("given", "standard", "uniform", "duplex")
+#: the pitch apex), ``"uniform"`` (constant depth), ``"duplex"`` (dedendum angle sum from the cutter radius: constant
+#: slot width), ``"trl"`` (tilted root line: the duplex sum capped at 1.3 times the standard one, ISO 23509 Annex C
+#: modified slot width).
+TAPERS = ("given", "standard", "uniform", "duplex", "trl")
 
 _DEG = math.pi / 180.0
 
@@ -69,10 +71,10 @@ class BlankInput:
     k_c : float
         Clearance factor, c = k_c·hmw.
     k_t : float
-        Thickness factor (thickness modification coefficient x_smn).
+        Thickness factor (ISO data type II); the standard's thickness modification coefficient is x_smn = k_t/2.
     jen, jet : float or None, mm
         Outer normal backlash or outer transverse (circular) backlash; at most one; default no backlash.
-    taper : {"duplex", "standard", "uniform", "given"}
+    taper : {"duplex", "trl", "standard", "uniform", "given"}
         Depthwise taper. ``"given"`` takes the dedendum angles from ``theta_*`` (ISO data type II).
     theta_a1, theta_a2, theta_f1, theta_f2 : float or None, rad
         Addendum and dedendum angles, only with ``taper="given"``. Uniform clearance is assumed (θa1 = θf2,
@@ -241,9 +243,9 @@ class BlankInput:
                 bad("b1", f"0 < b1 < 2*Rm = {2.0 * re2 - self.b:.6g}", "mm", "the pinion face would reach the apex")
             elif beta_ok and rc0_ok:
                 rm = re2 - self.b / 2.0
-                if self.rc0 <= rm * math.sin(self.beta_m) and self.taper == "duplex":
+                if self.rc0 <= rm * math.sin(self.beta_m) and self.taper in ("duplex", "trl"):
                     bad("rc0", f"rc0 > Rm*sin(beta_m) = {rm * math.sin(self.beta_m):.6g}", "mm",
-                        "duplex taper: the dedendum angle sum would not be positive")
+                        f"{self.taper} taper: the dedendum angle sum would not be positive")
         return P
 
     def _check_taper(self, P: list[Problem], real_in) -> None:

@@ -29,13 +29,14 @@ class BevelBlank:
 
     Built by :func:`spiralbevel.design.blank.compute_blank`. Subscript 1 = pinion, 2 = wheel. Attributes are grouped as in
     ``blank_meta.QUANTITIES``: basic data (``z1, z2, u, Sigma, hand1, hand2, rc0``, factors), pitch cone (``delta1,
-    delta2, Re1, Re2, Rm, Rm1, Rm2, Ri1, Ri2, b1, b2, de*, dm*, di*, met, mmt, mmn``), spiral and pressure angles
-    (``beta_m*, beta_e*`` heel, ``beta_i*`` toe, ``alpha_nD, alpha_nC, alpha_lim, alpha_eD, alpha_eC, alpha_e``),
-    mean depths (``hmw, c, hm, ham*, hfm*``), taper (``theta_a*, theta_f*, delta_a*, delta_f*``, the dedendum angle
-    sums), heel/toe depths and diameters (``hae*, hfe*, he*, hai*, hfi*, hi*, dae*, dai*``), axial positions
-    measured from the crossing point (``tzm*, txo*, txi*, tzF*, tzR*``), thickness (``jen, jet, jmn, smn*, smt*,
-    dvn*, smnc*, hamc*``), top lands at toe/mean/heel (``sai*, sam*, sae*``) and the pinion undercut limit
-    (``hlim*``).
+    delta2, Re1, Re2, Rm, Rm1, Rm2, Ri1, Ri2, b1, b2, be*, bi*, de*, dm*, di*, met, mmt, mmn``), spiral and
+    pressure angles (``beta_m*, beta_e*`` heel, ``beta_i*`` toe, ``alpha_nD, alpha_nC, alpha_lim, alpha_eD,
+    alpha_eC, alpha_e``), mean depths (``hmw, c, hm, x_hm1, x_smn, ham*, hfm*``), taper (``theta_a*, theta_f*,
+    delta_a*, delta_f*``, the dedendum angle sums), heel/toe depths and diameters (``hae*, hfe*, he*, hai*, hfi*,
+    hi*, ht*, dae*, dai*, dfe*, dfi*``), axial positions measured from the crossing point (``tzm*`` crossing point
+    to mean point, ``tz*`` pitch apex, ``txo*, txi*`` crown points, ``tzF*, tzR*`` face and root apex), thickness
+    (``jen, jet, jmn, x_sm*, smn*, smt*, dvn*, smnc*, hamc*``), top lands at toe/mean/heel (``sai*, sam*, sae*``)
+    and the pinion undercut limit (``hlim*``).
 
     Attributes
     ----------
@@ -61,6 +62,10 @@ class BevelBlank:
     zp: float
     b1: float
     b2: float
+    be1: float
+    be2: float
+    bi1: float
+    bi2: float
     Re1: float
     Re2: float
     Rm: float
@@ -93,6 +98,7 @@ class BevelBlank:
     c: float
     hm: float
     x_hm1: float
+    x_smn: float
     ham1: float
     ham2: float
     hfm1: float
@@ -100,6 +106,7 @@ class BevelBlank:
     sum_theta_f: float
     sum_theta_fS: float
     sum_theta_fC: float
+    sum_theta_fM: float
     theta_a1: float
     theta_a2: float
     theta_f1: float
@@ -120,12 +127,20 @@ class BevelBlank:
     hfi2: float
     hi1: float
     hi2: float
+    ht1: float
+    ht2: float
     dae1: float
     dae2: float
     dai1: float
     dai2: float
+    dfe1: float
+    dfe2: float
+    dfi1: float
+    dfi2: float
     tzm1: float
     tzm2: float
+    tz1: float
+    tz2: float
     txo1: float
     txo2: float
     txi1: float
@@ -137,6 +152,8 @@ class BevelBlank:
     jen: float
     jet: float
     jmn: float
+    x_sm1: float
+    x_sm2: float
     smn1: float
     smn2: float
     smt1: float

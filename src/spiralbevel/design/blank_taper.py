@@ -1,12 +1,13 @@
 """Depthwise taper of a spiral bevel pair without offset: addendum and dedendum angles (ISO 23509 Method 0).
 
-All four taper systems use uniform clearance, θa1 = θf2 and θa2 = θf1: the face cone of each member is parallel to
+All five taper systems use uniform clearance, θa1 = θf2 and θa2 = θf1: the face cone of each member is parallel to
 the root cone of its mate (ISO 23509:2016, dedendum and addendum angles, a = 0).
 
 References
 ----------
-ISO 23509:2016, dedendum angle sums ΣθfS (standard), ΣθfC (duplex, face milling, completing), ΣθfU = 0 (uniform);
-Annex F.2 Sample 1 (reproduced in reference/iso23509-sample1.md).
+ISO 23509:2016 Annex C (addendum and dedendum angles of the wheel), dedendum angle sums ΣθfS (standard depth),
+ΣθfC (constant slot width: duplex, face milling, completing), ΣθfM = min(ΣθfC, 1.3·ΣθfS) (modified slot width,
+Gleason's tilted root line, TRL), ΣθfU = 0 (uniform depth); Annex F.2 Sample 1 (ΣθfC = 8.6277°).
 """
 
 from __future__ import annotations
@@ -14,7 +15,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["TaperAngles", "dedendum_angle_sum_standard", "dedendum_angle_sum_duplex", "taper_angles"]
+__all__ = [
+    "TaperAngles",
+    "dedendum_angle_sum_standard",
+    "dedendum_angle_sum_duplex",
+    "dedendum_angle_sum_modified",
+    "taper_angles",
+]
 
 
 @dataclass(frozen=True)
@@ -29,6 +36,8 @@ class TaperAngles:
         Dedendum angle sum of the standard taper (computed for every taper, used by the checks).
     sum_theta_fC : float, rad
         Dedendum angle sum of the duplex taper for the given cutter radius.
+    sum_theta_fM : float, rad
+        Dedendum angle sum of the tilted root line (modified slot width) taper, min(ΣθfC, 1.3·ΣθfS).
     """
 
     theta_a1: float
@@ -37,6 +46,7 @@ class TaperAngles:
     theta_f2: float
     sum_theta_fS: float
     sum_theta_fC: float
+    sum_theta_fM: float
 
 
 def dedendum_angle_sum_standard(hfm1: float, hfm2: float, rm: float) -> float:
@@ -69,8 +79,9 @@ def dedendum_angle_sum_duplex(met: float, re: float, rm: float, beta_m: float, t
     beta_m : float, rad
         Mean spiral angle.
     tan_alpha : float
-        Tangent of the normal pressure angle; for unequal flank angles the mean (tan αnD + tan αnC)/2, which is
-        exact for the slot-width argument behind the formula (the slot narrows by Δh·(tan αD + tan αC)).
+        Tangent of the normal pressure angle; for unequal flank angles ISO 23509 takes the mean angle
+        αn = (αnD + αnC)/2 (the slot-width argument behind the formula would give (tan αnD + tan αnC)/2, larger by
+        about 0.2 % for αnD − αnC = 5°).
     rc0 : float, mm
         Cutter radius.
 
@@ -81,6 +92,24 @@ def dedendum_angle_sum_duplex(met: float, re: float, rm: float, beta_m: float, t
         90 instead of π/2 (ISO 23509 duplex taper; reference/iso23509-sample1.md gives 8.6277° for Sample 1).
     """
     return (0.5 * math.pi * met / (re * tan_alpha * math.cos(beta_m))) * (1.0 - rm * math.sin(beta_m) / rc0)
+
+
+def dedendum_angle_sum_modified(sum_standard: float, sum_duplex: float) -> float:
+    """Dedendum angle sum of the tilted root line taper (ISO 23509 Annex C: modified slot width).
+
+    Parameters
+    ----------
+    sum_standard, sum_duplex : float, rad
+        ΣθfS and ΣθfC.
+
+    Returns
+    -------
+    float, rad
+        ΣθfM = min(ΣθfC, 1.3·ΣθfS): the duplex taper, with the root line tilted about the mean point where the
+        constant-slot-width sum would exceed 1.3 times the standard one (small cutters, wide faces); the slot width
+        then varies along the face.
+    """
+    return min(sum_duplex, 1.3 * sum_standard)
 
 
 def taper_angles(
@@ -101,8 +130,8 @@ def taper_angles(
 
     Parameters
     ----------
-    taper : {"duplex", "standard", "uniform", "given"}
-        Taper system.
+    taper : {"duplex", "trl", "standard", "uniform", "given"}
+        Taper system (``"trl"``: tilted root line, ISO modified slot width).
     hfm1, hfm2 : float, mm
         Mean dedenda.
     rm, re2 : float, mm
@@ -112,11 +141,12 @@ def taper_angles(
     beta_m : float, rad
         Mean spiral angle.
     tan_alpha : float
-        Mean tangent of the normal pressure angles.
+        Tangent of the mean normal pressure angle (αnD + αnC)/2.
     rc0 : float, mm
         Cutter radius.
     c_ham : float
-        Mean addendum factor; the duplex sum is split θf1 = c_ham·ΣθfC, θf2 = (1 − c_ham)·ΣθfC.
+        Mean addendum factor; the duplex and TRL sums Σ are split θf1 = c_ham·Σ, θf2 = (1 − c_ham)·Σ (the standard's
+        θa2 = Σ·ham2/hmw).
     given : dict or None
         ``theta_a1 .. theta_f2`` (rad or None) for ``taper="given"``; θf1 from θf1 or θa2, θf2 from θf2 or θa1.
 
@@ -132,6 +162,9 @@ def taper_angles(
         tf1 = tf2 = 0.0
     elif taper == "duplex":
         tf1, tf2 = c_ham * s_dup, (1.0 - c_ham) * s_dup
+    elif taper == "trl":
+        s_mod = dedendum_angle_sum_modified(s_std, s_dup)
+        tf1, tf2 = c_ham * s_mod, (1.0 - c_ham) * s_mod
     elif taper == "given":
         g = given or {}
         tf1 = g.get("theta_f1") if g.get("theta_f1") is not None else g.get("theta_a2")
@@ -139,4 +172,5 @@ def taper_angles(
         tf1, tf2 = float(tf1), float(tf2)
     else:  # pragma: no cover - BlankInput validates the name
         raise ValueError(taper)
-    return TaperAngles(theta_a1=tf2, theta_a2=tf1, theta_f1=tf1, theta_f2=tf2, sum_theta_fS=s_std, sum_theta_fC=s_dup)
+    return TaperAngles(theta_a1=tf2, theta_a2=tf1, theta_f1=tf1, theta_f2=tf2, sum_theta_fS=s_std, sum_theta_fC=s_dup,
+                       sum_theta_fM=dedendum_angle_sum_modified(s_std, s_dup))

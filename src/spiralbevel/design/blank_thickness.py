@@ -5,8 +5,8 @@ lengths mm, angles rad.
 
 References
 ----------
-ISO 23509:2016 (tooth thickness: x_hm1, x_smn, smn, chordal values; spiral angle of a face-milled tooth at any cone
-distance); ISO 10300-1 (virtual cylindrical gear in the normal section, cos²βvb = 1 − sin²βm·cos²αn).
+ISO 23509:2016 (tooth thickness: x_hm1, x_smn, x_sm1, x_sm2, smn, chordal values; spiral angle of a face-milled
+tooth at any cone distance); ISO 10300-1 (virtual cylindrical gear in the normal section, cos²βvb = 1 − sin²βm·cos²αn).
 """
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ import math
 __all__ = [
     "spiral_angle_at",
     "virtual_normal_diameter",
+    "thickness_modification_coefficients",
     "mean_normal_thickness",
     "chordal_values",
     "tip_thickness",
@@ -85,10 +86,39 @@ def virtual_normal_diameter(r: float, delta: float, beta: float, cos2_alpha: flo
     return dv / (1.0 - math.sin(beta) ** 2 * cos2_alpha)
 
 
-def mean_normal_thickness(
-    mmn: float, x_hm1: float, x_smn: float, tan_aD: float, tan_aC: float, jmt_n: float
+def thickness_modification_coefficients(
+    x_smn: float, jen: float, mmn: float, rm: float, re2: float, beta_m: float, beta_e2: float, alpha_n: float
 ) -> tuple[float, float]:
-    """Mean normal circular tooth thicknesses of pinion and wheel.
+    """Thickness modification coefficients of pinion and wheel with the backlash allowance (ISO 23509).
+
+    Parameters
+    ----------
+    x_smn : float
+        Theoretical thickness modification coefficient (data type II: k_t / 2).
+    jen : float, mm
+        Outer normal backlash.
+    mmn : float, mm
+        Mean normal module.
+    rm, re2 : float, mm
+        Mean and outer cone distance of the wheel.
+    beta_m, beta_e2 : float, rad
+        Mean spiral angle and outer spiral angle of the wheel.
+    alpha_n : float, rad
+        Mean normal pressure angle (αnD + αnC)/2.
+
+    Returns
+    -------
+    x_sm1, x_sm2 : float
+        x_sm1 = x_smn − Δx and x_sm2 = −x_smn − Δx with Δx = jen·Rm·cos βm / (4·mmn·cos αn·Re2·cos βe2): the
+        outer normal backlash is scaled to the mean point (Rm/Re2, cos βm/cos βe2), turned into a circular thickness
+        in the normal section (1/cos αn) and taken half from each member.
+    """
+    dx = jen * rm * math.cos(beta_m) / (4.0 * mmn * math.cos(alpha_n) * re2 * math.cos(beta_e2))
+    return x_smn - dx, -x_smn - dx
+
+
+def mean_normal_thickness(mmn: float, x_hm1: float, x_sm1: float, x_sm2: float, alpha_n: float) -> tuple[float, float]:
+    """Mean normal circular tooth thicknesses of pinion and wheel (ISO 23509), backlash included.
 
     Parameters
     ----------
@@ -96,27 +126,29 @@ def mean_normal_thickness(
         Mean normal module.
     x_hm1 : float
         Mean profile shift coefficient of the pinion, (ham1 − ham2)/(2·mmn).
-    x_smn : float
-        Thickness modification coefficient (the thickness factor k_t).
-    tan_aD, tan_aC : float
-        Tangents of the drive and coast normal pressure angles.
-    jmt_n : float, mm
-        Backlash as circular thickness reduction in the mean normal section (both members together), mm.
+    x_sm1, x_sm2 : float
+        Thickness modification coefficients with backlash (:func:`thickness_modification_coefficients`).
+    alpha_n : float, rad
+        Mean normal pressure angle (αnD + αnC)/2.
 
     Returns
     -------
     smn1, smn2 : float, mm
-        smn1 = π·mmn/2 + mmn·(2·x_smn + x_hm1·(tan αnD + tan αnC)) − jmt_n/2 and smn2 = π·mmn − smn1 − jmt_n
-        (ISO 23509 smn1 = 0.5·π·mmn + 2·mmn·(x_smn + x_hm1·tan αn) for equal flank angles; the backlash is taken
-        half from each member).
+        smn1 = π·mmn/2 + 2·mmn·(x_sm1 + x_hm1·tan αn), smn2 = π·mmn/2 + 2·mmn·(x_sm2 − x_hm1·tan αn).
+
+    Notes
+    -----
+    The basic crown-gear (rack) argument: a profile shift x·m widens the tooth on the pitch line by
+    x·m·(tan αD + tan αC); the standard writes 2·x·m·tan αn with the mean angle, which is the same for equal flank
+    angles and differs by about 0.2 % of the shift term for αD − αC = 5°.
     """
-    s1 = 0.5 * math.pi * mmn + mmn * (2.0 * x_smn + x_hm1 * (tan_aD + tan_aC))
-    s2 = math.pi * mmn - s1
-    return s1 - 0.5 * jmt_n, s2 - 0.5 * jmt_n
+    t = math.tan(alpha_n)
+    return (0.5 * math.pi * mmn + 2.0 * mmn * (x_sm1 + x_hm1 * t),
+            0.5 * math.pi * mmn + 2.0 * mmn * (x_sm2 - x_hm1 * t))
 
 
-def chordal_values(smn: float, ham: float, dvn: float) -> tuple[float, float]:
-    """Mean normal chordal thickness and chordal addendum on the virtual spur gear.
+def chordal_values(smn: float, ham: float, dvn: float, delta: float) -> tuple[float, float]:
+    """Mean normal chordal thickness and mean chordal addendum (ISO 23509).
 
     Parameters
     ----------
@@ -125,17 +157,21 @@ def chordal_values(smn: float, ham: float, dvn: float) -> tuple[float, float]:
     ham : float, mm
         Mean addendum.
     dvn : float, mm
-        Virtual normal reference diameter.
+        Virtual normal reference diameter d_vn = dm / ((1 − sin²βm·cos²αn)·cos δ).
+    delta : float, rad
+        Pitch angle.
 
     Returns
     -------
     smnc, hamc : float, mm
-        smnc = dvn·sin(smn/dvn), hamc = ham + dvn/2·(1 − cos(smn/dvn)).
+        smnc = dvn·sin(smn/dvn); hamc = ham + ½·dvn·cos δ·(1 − cos(smn/dvn)). The standard takes the chord on the
+        virtual gear and scales its sagitta with cos δ (like the Gleason chordal addendum a + t²·cos δ/(4·d) with the
+        transverse pitch diameter d); for a crown wheel (δ = 90°) hamc = ham.
     """
     if not math.isfinite(dvn):
         return smn, ham
     half = smn / dvn
-    return dvn * math.sin(half), ham + 0.5 * dvn * (1.0 - math.cos(half))
+    return dvn * math.sin(half), ham + 0.5 * dvn * math.cos(delta) * (1.0 - math.cos(half))
 
 
 def tip_thickness(d: float, s: float, ha: float, alpha_D: float, alpha_C: float) -> float:

@@ -71,7 +71,7 @@ class Locator:
     """Newton solves on the generated surface of one ``Generator`` with a coarse start table."""
 
     def __init__(self, gen, outline: BlankOutline, psi_span=1.2, n_psi=97, n_u=13):
-        self.gen, self.outline = gen, outline
+        self.gen, self.outline, self.psi_span = gen, outline, psi_span
         u0, uj = gen.cp["u_min"], gen.cp["u_j"]
         depth = outline.ham + outline.hfm
         u_top = uj + 1.6 * depth / np.cos(gen.cutter.blade_angle)
@@ -89,6 +89,8 @@ class Locator:
         self._tab = np.stack([ax[ok], rad[ok]], -1)
         self._par = np.stack([U[ok], P[ok]], -1)
         self._tree = cKDTree(self._tab)
+        blade = self._par[:, 0] >= uj
+        self._blade = (cKDTree(self._tab[blade]), self._par[blade]) if np.any(blade) else (self._tree, self._par)
 
     def start(self, axial, radius):
         """Nearest table entry to each target (axial, radius)."""
@@ -96,9 +98,55 @@ class Locator:
         _, idx = self._tree.query(tgt)
         return self._par[idx].reshape(np.shape(axial) + (2,))
 
-    def solve(self, fun, x0, what):
+    def starts(self, axial, radius, k):
+        """Alternative starts: k = 1 the nearest table entry on the blade (not the fillet, whose points crowd near the
+        tip), k >= 2 the k-th nearest entry of the whole table."""
+        tgt = np.stack([axial, radius], -1).reshape(-1, 2)
+        if k == 5:
+            return self._fine_start(tgt).reshape(np.shape(axial) + (2,))
+        tree, par = (self._blade if k == 1 else (self._tree, self._par))
+        kk = 0 if k == 1 else k
+        _, idx = tree.query(tgt, k=kk + 1)
+        idx = np.minimum(np.reshape(idx, (len(tgt), -1))[:, kk], len(par) - 1)
+        return par[idx].reshape(np.shape(axial) + (2,))
+
+    def _fine_start(self, tgt):
+        """Nearest reached point of a fine (u, psi_c) table (61 x 481), for targets the coarse table misleads."""
+        if not hasattr(self, "_fine"):
+            U, P = np.meshgrid(np.linspace(*self.u_range, 61), np.linspace(-self.psi_span, self.psi_span, 481),
+                               indexing="ij")
+            ax, rad, disc = self.gen.axial_radial(U, P)
+            ok = np.abs(disc) <= 1.0
+            self._fine = (cKDTree(np.stack([ax[ok], rad[ok]], -1)), np.stack([U[ok], P[ok]], -1))
+        tree, par = self._fine
+        _, idx = tree.query(tgt)
+        return par[idx]
+
+    def solve(self, fun, x0, what, retry=None):
+        """Batched Newton from ``x0``; ``retry(k)`` gives the k-th alternative starts for points that do not converge
+        (the coarse table's nearest entry can sit on the degenerate fillet tip, where the map (u, psi_c) -> point
+        folds)."""
+        def reached(r):
+            # a converged point is valid only where the cutter reaches it (|disc| <= 1 in the contact solve)
+            _, _, disc = self.gen.axial_radial(r.x[..., 0], r.x[..., 1])
+            r.converged = r.converged & (np.abs(disc) <= 1.0)
+            return r
+
         res = solve_batched(fun, x0, tol=TOL.newton_abs * 10, max_iter=TOL.max_iter,
                             max_step=np.array([2.0, 0.05]))
+        if retry is not None:
+            res = reached(res)
+        for k in range(1, 6 if retry is not None else 1):
+            bad = ~res.converged
+            if not np.any(bad):
+                break
+            x1 = np.where(bad[..., None], retry(k), res.x)
+            again = reached(solve_batched(fun, x1, tol=TOL.newton_abs * 10, max_iter=TOL.max_iter,
+                                          max_step=np.array([2.0, 0.05])))
+            keep = bad & again.converged
+            res.x = np.where(keep[..., None], again.x, res.x)
+            res.residual = np.where(keep, again.residual, res.residual)
+            res.converged = res.converged | keep
         if not np.all(res.converged):
             bad = ~res.converged
             raise GeometryError.single(
@@ -119,7 +167,8 @@ class Locator:
             ax, rad, _ = gen.axial_radial(x[..., 0], x[..., 1])
             return np.stack([rad - radius, ax - axial], -1)
 
-        return self.solve(fun, self.start(axial, radius) if x0 is None else x0, "locate(axial, radius)")
+        return self.solve(fun, self.start(axial, radius) if x0 is None else x0, "locate(axial, radius)",
+                          retry=lambda k: self.starts(axial, radius, k))
 
     def at_R_h(self, R, h, x0=None):
         ax, rad = self.outline.axial_radius(np.asarray(R, float), np.asarray(h, float))
@@ -138,7 +187,13 @@ class Locator:
         ax0, rad0 = ol.axial_radius(R, np.zeros_like(R) - ol.hfm)
         x0 = self.start(ax0, rad0)
         x0[..., 0] = u
-        return self.solve(fun, x0, "grid(face station)")
+
+        def retry(k):
+            x = self.starts(ax0, rad0, k)
+            x[..., 0] = u
+            return x
+
+        return self.solve(fun, x0, "grid(face station)", retry=retry)
 
 
 def locate_params(gen, outline, axial, radius):

@@ -81,10 +81,12 @@ class Generator:
                            psi_c=psi, fillet=sol["u"] < self.cp["u_j"])
 
     def meshing_residual(self, u, theta, psi):
-        """Relative residual n.v / max(|v|, 1e-6 |omega_12| |r|) of seed 001 Eq. (13) at (u, theta, psi_c).
+        """Relative residual n.v / max(|v|, 1e-4 |omega_12| |r|) of seed 001 Eq. (13) at (u, theta, psi_c).
 
-        The floor on the denominator only matters on the instantaneous axis, where v = 0 (e.g. the cutter tip line
-        when the cradle plane rolls purely on the root cone).
+        The floor on the denominator only matters on and near the instantaneous axis, where v = 0 (the cutter tip line
+        when the cradle plane rolls purely on the root cone; the mean pitch point of basic settings whose
+        instantaneous axis passes through it): there n.v is rounding noise of order 1e-16 |omega_12| |r| and the plain
+        ratio would magnify it without bound.
         """
         u, theta, psi = np.broadcast_arrays(*(np.asarray(x, float) for x in (u, theta, psi)))
         rho, z, chi, dchi = _g.profile(u, self.cp)
@@ -94,7 +96,7 @@ class Generator:
         vel = _g.relative_velocity(r, psi, self.mp)
         v = vel["v12"]
         scale = np.linalg.norm(vel["w1"] - vel["w2"], axis=-1) * np.linalg.norm(r, axis=-1)
-        return np.einsum("...i,...i", n_h, v) / np.maximum(np.linalg.norm(v, axis=-1), 1e-6 * scale)
+        return np.einsum("...i,...i", n_h, v) / np.maximum(np.linalg.norm(v, axis=-1), 1e-4 * scale)
 
 
 def meshing_residual(cutter, settings, u, theta, psi_c):

@@ -237,6 +237,55 @@ def _wrap(a):
     return (np.asarray(a) + np.pi) % (2.0 * np.pi) - np.pi
 
 
+def _rotated_sectors(builder, br: _Bridger, pa, pb, na, nb, rots, b_leads) -> list:
+    """Add z teeth and the root lands between them to ``builder`` by rotation of one sector.
+
+    The sector (one tooth: flanks, top land, toe and heel faces; and the root land from its leading root edge to the
+    trailing root edge of the next tooth) is built once; sector k is that mesh turned by ``rots[k]``, its next-tooth
+    vertices being those of sector k + 1 (mod z). Sectors share only the root edges, whose orientation the builder
+    checks. The sector's bridging rungs enter ``br``'s cache under each sector's vertex numbers, so that the end faces
+    built afterwards reuse them. Returns the teeth's flank indices and coordinates (as ``_ToothIdx``).
+    """
+    z = len(rots)
+    tb = MeshBuilder()
+    tbr = _Bridger(tb, br.h)
+    t0 = _ToothIdx(tb, pa, pb)
+    _add_tooth(tb, tbr, t0, na, nb, root=False)
+    n_tooth_faces = len(tb.mesh().faces)
+    (lead, lead_p), (trail, trail_p) = ((t0.b[:, 0], pb[:, 0]), (t0.a[:, 0], pa[:, 0])) if b_leads else \
+        ((t0.a[:, 0], pa[:, 0]), (t0.b[:, 0], pb[:, 0]))
+    next_p = apply(rots[1 % z] if z > 1 else rots[0], trail_p)
+    ghost = tb.add_vertices(next_p)  # the next tooth's trailing root edge
+    tb.add_patch(tbr.strip(lead, ghost, lead_p, next_p), name="root land")
+    sector = tb.mesh()
+    own = np.ones(len(sector.vertices), bool)
+    own[ghost] = False
+    own_idx = np.flatnonzero(own)
+    pos = np.cumsum(own) - 1  # position of an own vertex in the sector block
+    block, base0 = len(own_idx), builder.n_vertices
+    for R in rots:
+        builder.add_vertices(apply(R, sector.vertices[own_idx]))
+    maps = []
+    for k in range(z):
+        m = np.empty(len(sector.vertices), np.int64)
+        m[own_idx] = base0 + k * block + np.arange(block)
+        m[ghost] = base0 + ((k + 1) % z) * block + pos[trail]
+        maps.append(m)
+    for m in maps:
+        builder.add_patch(m[sector.faces[:n_tooth_faces]], fixed=True, name="tooth")
+    for m in maps:
+        builder.add_patch(m[sector.faces[n_tooth_faces:]], fixed=True, name="root land")
+        for (u, v), r in tbr._cache.items():
+            U, V, r = m[u], m[v], m[r]
+            br._cache[(U, V) if U < V else (V, U)] = r if U < V else r[::-1]
+    teeth = []
+    for k, R in enumerate(rots):
+        t = _ToothIdx.__new__(_ToothIdx)
+        t.a, t.b, t.pa, t.pb = maps[k][t0.a], maps[k][t0.b], apply(R, pa), apply(R, pb)
+        teeth.append(t)
+    return teeth
+
+
 def _gear(convex, concave, z, body: GearBody | None, teeth: bool) -> TriangleMesh:
     if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or z < 3:
         raise DesignError.single("z", z, "integer >= 3", "-")
@@ -274,20 +323,21 @@ def _gear(convex, concave, z, body: GearBody | None, teeth: bool) -> TriangleMes
     builder = MeshBuilder()
     br = _Bridger(builder, _spacing(pa, pb))
     rots = rot_z(np.arange(z) * pitch)
-    tooth = [_ToothIdx(builder, pa, pb, R) for R in rots]
     known = na is not None and nb is not None
     try:
-        for R, t in zip(rots, tooth):
-            if teeth:
-                _add_tooth(builder, br, t, *((apply(R, na), apply(R, nb)) if known else (None, None)), root=False)
-            else:
+        if teeth:
+            tooth = _rotated_sectors(builder, br, pa, pb, na, nb, rots, b_leads)
+        else:
+            tooth = [_ToothIdx(builder, pa, pb, R) for R in rots]
+            for t in tooth:
                 builder.add_patch(br.strip(t.a[:, 0], t.b[:, 0], t.pa[:, 0], t.pb[:, 0]), name="root strip")
         # (indices, coordinates) of the leading and trailing root edges of every tooth
         lead = [(t.b[:, 0], t.pb[:, 0]) if b_leads else (t.a[:, 0], t.pa[:, 0]) for t in tooth]
         trail = [(t.a[:, 0], t.pa[:, 0]) if b_leads else (t.b[:, 0], t.pb[:, 0]) for t in tooth]
-        for k in range(z):
-            (ia, qa), (ib, qb) = lead[k], trail[(k + 1) % z]
-            builder.add_patch(br.strip(ia, ib, qa, qb), name="root land")
+        if not teeth:
+            for k in range(z):
+                (ia, qa), (ib, qb) = lead[k], trail[(k + 1) % z]
+                builder.add_patch(br.strip(ia, ib, qa, qb), name="root land")
         for end, zc in ((0, front), (-1, back)):
             parts = []
             for k in range(z):

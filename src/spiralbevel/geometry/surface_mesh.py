@@ -286,9 +286,8 @@ class MeshBuilder:
         faces = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
         d = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
         d = d[d[:, 0] != d[:, 1]]
-        keys = _edge_keys(d).tolist()
-        same = sum(k in self._keys for k in keys)
-        opposite = sum(k in self._keys for k in _edge_keys(d[:, ::-1]).tolist())
+        same = not self._keys.isdisjoint(_edge_keys(d).tolist())
+        opposite = not self._keys.isdisjoint(_edge_keys(d[:, ::-1]).tolist())
         if same and opposite:
             raise OrientationError(f"{name}: orientation disagrees with the patches already present")
         if same:

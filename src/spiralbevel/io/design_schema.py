@@ -14,7 +14,7 @@ from .angles import parse_angle_deg
 
 __all__ = ["Angle", "GearSetSpec", "DepthSpec", "FlankSpec", "ManufacturingSpec", "OutputSpec", "CutterSpec",
            "MachineSpec", "FlankMachineSpec", "FaceMillingSpec", "SynthesisSpec", "LTCASpec",
-           "DesignFile"]
+           "CrowningSpec", "MisalignmentSpec", "RatingSpec", "DesignFile"]
 
 Angle = Annotated[float, BeforeValidator(parse_angle_deg)]
 GridCount = Annotated[int, Field(ge=3, le=401)]
@@ -31,7 +31,8 @@ class _Model(BaseModel):
 class DepthSpec(_Model):
     """Depthwise proportions and taper (ISO 23509 Method 0)."""
 
-    taper: Literal["given", "standard", "uniform", "duplex"] = _f("duplex", description="depthwise taper system")
+    taper: Literal["given", "standard", "uniform", "duplex", "trl"] = _f(
+        "duplex", description="depthwise taper system (trl: tilted root line)")
     mean_addendum_factor: Optional[float] = _f(None, ge=0.0, le=1.0, description="c_ham; default 0.21 + 0.29/u^2")
     depth_factor: float = _f(2.0, gt=0.0, le=4.0, description="k_d, mean working depth / mean normal module")
     clearance_factor: float = _f(0.125, ge=0.0, le=1.0, description="k_c")
@@ -87,6 +88,10 @@ class ManufacturingSpec(_Model):
     die_direction: tuple[float, float, float] = _f((0.0, 0.0, 1.0), unit="-", description="forging die opening")
     ball_radius: float = _f(2.0, unit="mm", gt=0.0, le=50.0, description="ball-end tool radius")
     scallop_height: float = _f(0.005, unit="mm", gt=0.0, le=1.0, description="allowed scallop height")
+    draft_angle: Angle = _f(0.0, unit="deg", ge=0.0, lt=45.0,
+                            description="minimum forging draft angle: n_out . v_d <= -sin(draft_angle)")
+    forging_relief: bool = _f(False, description="log-spiral: relieve the flanks that fail the draft (two feature "
+                              "parameters of least added volume, docs/forging.md)")
 
     @field_validator("die_direction")
     @classmethod
@@ -170,6 +175,28 @@ class SynthesisSpec(_Model):
         "spline", description="blank-offset law between control points")
 
 
+class MisalignmentSpec(_Model):
+    """Misalignment sizes of the sensitivity study (each applied alone; signs in docs/conventions.md)."""
+
+    pinion_axial: float = _f(0.05, unit="mm", gt=0.0, le=5.0, description="Delta A1")
+    gear_axial: float = _f(0.05, unit="mm", gt=0.0, le=5.0, description="Delta A2")
+    offset: float = _f(0.05, unit="mm", gt=0.0, le=5.0, description="Delta E")
+    shaft_angle: Angle = _f(0.05, unit="deg", gt=0.0, le=2.0, description="Delta gamma")
+
+
+class CrowningSpec(_Model):
+    """Log-spiral designs: crown the pinion so that the conjugate pair becomes mismatched (point contact), from
+    targets at the mean point (docs/logspiral_mismatch.md)."""
+
+    side: Literal["convex", "concave"] = _f("convex", description="pinion flank crowned (meets the other gear side)")
+    semi_major_axis: float = _f(6.0, unit="mm", gt=0.0, le=50.0, description="contact ellipse a at the mean point")
+    path_direction: Angle = _f(20.0, unit="deg", gt=-89.0, lt=89.0,
+                               description="eta: path on the pinion flank from the profile toward the heel")
+    te_level: float = _f(8.0, unit="arcsec", gt=0.0, le=600.0, description="parabolic TE at the cycle ends")
+    approach: float = _f(0.00635, unit="mm", gt=0.0, le=0.1, description="elastic approach of the ellipse")
+    misalignment: MisalignmentSpec = MisalignmentSpec()
+
+
 class LTCASpec(_Model):
     """Loaded tooth contact analysis (seed 001 §4.3.2) of one side of a face-milled pair."""
 
@@ -191,6 +218,65 @@ class LTCASpec(_Model):
         return v
 
 
+def _pair(v):
+    """A number for both members, or a pair [pinion, gear]."""
+    if isinstance(v, (int, float)) and not isinstance(v, bool):
+        return (v, v)
+    return v
+
+
+Pair = Annotated[tuple[float, float], BeforeValidator(_pair)]
+
+
+class RatingSpec(_Model):
+    """Load capacity rating, ISO 10300 Method B1 (pairs are [pinion, gear]; one number stands for both)."""
+
+    pinion_torque: Optional[float] = _f(None, unit="N m", gt=0.0, le=1e7, description="T1, nominal pinion torque")
+    power: Optional[float] = _f(None, unit="kW", gt=0.0, le=1e5, description="P, nominal power (instead of torque)")
+    pinion_speed: float = _f(..., unit="1/min", gt=0.0, le=1e6, description="n1")
+    application_factor: float = _f(1.0, ge=1.0, le=10.0, description="K_A")
+    pitch_deviation: Optional[Pair] = _f(None, unit="um", description="single pitch deviation f_pt [pinion, gear]")
+    accuracy_grade: Optional[int] = _f(None, ge=2, le=11, description="ISO 17485 grade (instead of pitch_deviation)")
+    mounting: Literal["both-straddle", "one-cantilever", "both-cantilever"] = _f(
+        "one-cantilever", description="bearing arrangement of pinion and gear")
+    contact_pattern: Literal["full-load", "light-load", "sample-estimated"] = _f(
+        "light-load", description="contact pattern verified under full load, under light test load, or on a sample "
+        "set and estimated for full load")
+    profile_crowning: Literal["low", "high"] = _f(
+        "low", description="profile crowning of the pair: the distribution of the load over the contact lines "
+        "(ISO 10300-2 load sharing factor)")
+    cutter_edge_radius: Optional[Pair] = _f(None, unit="mm", description="rho_a0 [pinion, gear]; default: the "
+                                            "edge radius of the cutter of each member's drive flank")
+    youngs_modulus: float = _f(206000.0, unit="N/mm^2", gt=1000.0, le=1e6, description="E of both members")
+    poisson_ratio: float = _f(0.3, unit="-", gt=0.0, lt=0.5, description="nu of both members")
+    density: float = _f(7.86e-6, unit="kg/mm^3", gt=0.0, le=1e-4, description="rho of both members")
+    material: Literal["case-hardened", "through-hardened"] = _f("case-hardened", description="steel class")
+    sigma_Hlim: Pair = _f(..., unit="N/mm^2", description="allowable contact stress number [pinion, gear]")
+    sigma_Flim: Pair = _f(..., unit="N/mm^2", description="allowable bending stress number [pinion, gear]")
+    S_Hmin: float = _f(1.0, gt=0.0, le=10.0, description="minimum safety factor for pitting")
+    S_Fmin: float = _f(1.3, gt=0.0, le=10.0, description="minimum safety factor for bending")
+    load_cycles: Optional[float] = _f(None, gt=0.0, le=1e15, description="pinion load cycles N_L; default long life")
+    oil_viscosity: float = _f(..., unit="mm^2/s", gt=0.0, le=1e5, description="nu_40 of the lubricant")
+    flank_roughness: Pair = _f((8.0, 8.0), unit="um", description="Rz of the flanks [pinion, gear]")
+    root_roughness: Pair = _f((16.0, 16.0), unit="um", description="Rz of the root fillets [pinion, gear]")
+
+    @field_validator("pitch_deviation", "cutter_edge_radius", "sigma_Hlim", "sigma_Flim", "flank_roughness",
+                     "root_roughness")
+    @classmethod
+    def _positive(cls, v):
+        if v is not None and not all(x > 0 for x in v):
+            raise ValueError("allowed: numbers > 0")
+        return v
+
+    @model_validator(mode="after")
+    def _one_of(self):
+        if (self.pinion_torque is None) == (self.power is None):
+            raise ValueError("give exactly one of pinion_torque (N m) or power (kW)")
+        if (self.pitch_deviation is None) == (self.accuracy_grade is None):
+            raise ValueError("give exactly one of pitch_deviation [f_pt1, f_pt2] (um) or accuracy_grade (2 ... 11)")
+        return self
+
+
 class DesignFile(_Model):
     """A whole spiralbevel design file."""
 
@@ -200,5 +286,13 @@ class DesignFile(_Model):
     face_milling: FaceMillingSpec = FaceMillingSpec()
     synthesis: Optional[SynthesisSpec] = None
     ltca: Optional[LTCASpec] = None
+    crowning: Optional[CrowningSpec] = None
+    rating: Optional[RatingSpec] = None
     manufacturing: ManufacturingSpec = ManufacturingSpec()
     output: OutputSpec = OutputSpec()
+
+    @model_validator(mode="after")
+    def _crowning_is_logspiral(self):
+        if self.crowning is not None and self.flank.kind != "log-spiral":
+            raise ValueError("[crowning] applies to flank.kind = 'log-spiral' only (face-milled pairs: [synthesis])")
+        return self

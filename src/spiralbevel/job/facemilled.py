@@ -9,7 +9,7 @@ import numpy as np
 
 from .._core.rotations import rot_z
 from ..conventions import Member, Side
-from ..errors import DesignError, GeometryError
+from ..errors import ConvergenceError, DesignError, GeometryError
 from ..meshing.tca_result import ARCSEC
 
 MEMBERS = (Member.PINION, Member.GEAR)
@@ -26,31 +26,15 @@ class FlankSetup:
     settings: object
     flank: object
     source: str
+    fit: object = None
 
 
 def _default_cutter(spec, blank, member, side):
-    from ..machine.cutter import Blade, HeadCutter
+    """The derived cutter of a flank (``machine.default_cutter``) with the design file's overrides."""
+    from ..machine.default_cutter import default_cutter
 
-    fm, g = spec.face_milling, spec.gear_set
-    i = member.index
-    drive = (member is Member.PINION and side is Side.CONCAVE) or (member is Member.GEAR and side is Side.CONVEX)
-    alpha = math.radians(g.normal_pressure_angle if drive or g.coast_pressure_angle is None
-                         else g.coast_pressure_angle)
-    W = fm.point_width
-    if W is None:
-        # slot width at the root in the mean normal section: space width on the pitch line minus the flank run-out
-        space = math.pi * blank.mmn - getattr(blank, f"smn{i}")
-        W = space - 2.0 * getattr(blank, f"hfm{i}") * math.tan(alpha)
-        if W <= 0.2 * blank.mmn:
-            raise GeometryError.single(
-                f"face_milling.point_width", "derived", f"> {0.2 * blank.mmn:.3f}", "mm",
-                f"the {member.value} tooth space is too narrow at the root for a derived cutter "
-                f"(slot width {W:.3f} mm): give point_width explicitly or reduce the dedendum")
-    rho = fm.edge_radius if fm.edge_radius is not None else 0.45 * W
-    blade = Blade.INNER if side is Side.CONVEX else Blade.OUTER
-    s = blade.sign
-    return HeadCutter(point_radius=blank.rc0 + s * W / 2.0, blade_angle=alpha, point_width=W, edge_radius=rho,
-                      blade=blade)
+    fm = spec.face_milling
+    return default_cutter(blank, member, side, point_width=fm.point_width, edge_radius=fm.edge_radius)
 
 
 def _given_cutter(cs, side):
@@ -80,10 +64,51 @@ def setup_flanks(spec, blank, with_synthesis: bool = False):
     """
     out = _basic_setups(spec, blank)
     synth = {}
-    if spec.synthesis is not None:
-        new, synth = synthesize_sides(spec, blank, out)
+    sy = effective_synthesis(spec, blank)
+    if sy is not None:
+        new, synth = synthesize_sides(spec, blank, out, sy)
         out.update(new)
     return (out, synth) if with_synthesis else out
+
+
+#: defaults of the developed pair when a face-milled design has no ``[synthesis]`` section (docs/conventions.md,
+#: "Developed pair by default"): both sides, contact path 0 deg from the gear's profile direction, contact-ellipse
+#: semi-major axis 0.15 b (a bearing about a third of the face width long) at an elastic approach of b/5827 (the
+#: Gleason 0.00635 mm at seed 001's 37 mm face width, scaled with the size so that geometrically similar designs get
+#: similar relative curvatures), parabolic TE of 8 arcsec over half a mesh cycle on each side of the mean contact
+DEFAULT_SYNTHESIS = dict(sides=("drive", "coast"), path_direction=0.0, semi_major_axis_fraction=0.15,
+                         approach_fraction=0.00635 / 37.0, te_magnitude=8.0)
+
+
+def _default_spec_class():
+    from ..io.design_schema import SynthesisSpec
+
+    class DefaultSynthesis(SynthesisSpec):
+        """The default synthesis: may fall back to the other sets of solved settings."""
+
+        _default: bool = True
+
+    return DefaultSynthesis
+
+
+def effective_synthesis(spec, blank):
+    """The ``[synthesis]`` section, or the defaults when a face-milled design without given pinion settings has none.
+
+    Returns ``None`` when nothing is synthesized (a pinion side with given machine settings keeps them).
+    """
+    from ..io.design_schema import SynthesisSpec
+
+    if spec.synthesis is not None:
+        return spec.synthesis
+    fmspec = spec.face_milling
+    sides = tuple(name for name in DEFAULT_SYNTHESIS["sides"]
+                  if getattr(fmspec, f"pinion_{PAIR_SIDES[name][0].value}").machine is None)
+    if not sides:
+        return None
+    d = DEFAULT_SYNTHESIS
+    return _default_spec_class()(sides=sides, path_direction=d["path_direction"],
+                         semi_major_axis=d["semi_major_axis_fraction"] * float(blank.b2),
+                         approach=d["approach_fraction"] * float(blank.b2), te_magnitude=d["te_magnitude"])
 
 
 #: design-file names of the pair sides: (pinion side, gear side)
@@ -91,8 +116,8 @@ PAIR_SIDES = {"drive": (Side.CONCAVE, Side.CONVEX), "coast": (Side.CONVEX, Side.
 _FREE = {"offset": "FREE_OFFSET", "modified-roll": "FREE_MODIFIED_ROLL", "fixed-blade": "FREE_FIXED_BLADE"}
 
 
-def synthesize_sides(spec, blank, setups):
-    """Local synthesis of the pinion flank of each side listed in ``spec.synthesis``.
+def synthesize_sides(spec, blank, setups, sy=None):
+    """Local synthesis of the pinion flank of each side listed in ``sy`` (default ``spec.synthesis``).
 
     Returns ({(PINION, side): FlankSetup}, {side name: SynthesisResult}).
     """
@@ -102,7 +127,7 @@ def synthesize_sides(spec, blank, setups):
     from .problems import restated
 
     try:
-        return _synthesize_sides(spec, blank, setups, syn)
+        return _synthesize_sides(spec.synthesis if sy is None else sy, blank, setups, syn)
     except DesignError as err:
         raise restated(err, SYNTHESIS_PATHS, default="synthesis") from err
 
@@ -114,8 +139,7 @@ SYNTHESIS_PATHS = {
 }
 
 
-def _synthesize_sides(spec, blank, setups, syn):
-    sy = spec.synthesis
+def _synthesize_sides(sy, blank, setups, syn):
     new, results = {}, {}
     for name in sy.sides:
         s1, s2 = PAIR_SIDES[name]
@@ -134,12 +158,24 @@ def _synthesize_sides(spec, blank, setups, syn):
                 f"local synthesis + multi-point control ({name} side)")
             results[name] = design
             continue
-        res = syn.synthesize_pinion(
-            gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
-            semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
-            approach=sy.approach, free=getattr(syn, _FREE[sy.free]))
+        pin = setups[(Member.PINION, s1)]
+        hint = pin.source.startswith("basic settings solved")   # start from the pinion's solved basic settings
+        # the design file's set of solved settings first; for the default synthesis the other sets after it
+        names = [sy.free] + ([f for f in _FREE if f != sy.free] if getattr(sy, "_default", False) else [])
+        for k, free in enumerate(names):
+            try:
+                res = syn.synthesize_pinion(
+                    gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
+                    semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
+                    approach=sy.approach, free=getattr(syn, _FREE[free]),
+                    pinion_cutter_hint=pin.cutter if hint else None,
+                    pinion_settings_hint=pin.settings if hint else None)
+                break
+            except ConvergenceError:
+                if k == len(names) - 1:
+                    raise
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
-                                              res.pinion_flank, f"local synthesis ({name} side)")
+                                              res.pinion_flank, f"local synthesis ({name} side, free = {free})")
         results[name] = res
     return new, results
 
@@ -170,27 +206,30 @@ def cmc_paper_model(spec, blank, setups, name):
 
 def _basic_setups(spec, blank):
     from ..generation.flank import generate_flank
-    from ..machine.settings import MachineSettings
+    from ..generation.basic_settings_solve import solve_basic_settings
 
     out = {}
     for m in MEMBERS:
         for s in SIDES:
             key = f"{m.value}_{s.value}"
             fs = getattr(spec.face_milling, key)
+            fit = None
             try:
                 cutter = _given_cutter(fs.cutter, s) if fs.cutter is not None else _default_cutter(spec, blank, m, s)
                 if fs.machine is not None:
                     settings, source = _given_settings(fs.machine), "given"
+                    flank = generate_flank(cutter, settings, blank, m, s)
+                    flank.mean_point()  # generation is lazy: check here that the settings generate this flank at all
                 else:
-                    settings = MachineSettings.from_blank(blank, m, s, cutter, roll=spec.face_milling.roll)
-                    source = "from blank (crown-gear generation)"
-                flank = generate_flank(cutter, settings, blank, m, s)
-                flank.mean_point()  # generation is lazy: check here that the settings generate this flank at all
+                    cutter, settings, flank, fit = solve_basic_settings(
+                        blank, m, s, cutter, solve_blade_angle=fs.cutter is None, roll=spec.face_milling.roll)
+                    source = ("basic settings solved for the design pressure and spiral angles, root on the root "
+                              "cone" + ("" if fs.cutter is None else " (given cutter: spiral angle only)"))
             except DesignError as err:
                 if fs.machine is not None and "equation of meshing has no solution" in str(err):
                     raise _misplaced_cutter(err, key, fs, blank, m, s, cutter, spec) from err
                 raise _in_design_file(err, key, fs) from err
-            out[(m, s)] = FlankSetup(m, s, cutter, settings, flank, source)
+            out[(m, s)] = FlankSetup(m, s, cutter, settings, flank, source, fit)
     return out
 
 
@@ -285,8 +324,11 @@ def rotate_grid(points, normals, angle):
     return points @ R.T, normals @ R.T
 
 
-def flank_report(setups):
-    """``flanks`` and ``machine_settings`` report sections (degrees, mm, 1/mm)."""
+def flank_report(setups, blank=None):
+    """``flanks`` and ``machine_settings`` report sections (degrees, mm, 1/mm); with the blank, each flank's design
+    against achieved mean-point angles and root position (``design_vs_achieved``)."""
+    from ..generation.basic_settings_solve import flank_fit
+
     flanks, machines = {}, {}
     for (m, s), st in setups.items():
         mp = st.flank.mean_point()
@@ -309,5 +351,8 @@ def flank_report(setups):
                        "profile_radius_mm": c.profile_radius if math.isfinite(c.profile_radius) else None},
             "summary": [list(r) for r in st.settings.summary_rows(c, m, s)],
         }
+        fit = st.fit if st.fit is not None else (flank_fit(blank, st.flank) if blank is not None else None)
+        if fit is not None:
+            flanks[m.value][s.value]["design_vs_achieved"] = fit.to_dict()
     units = {"settings": "mm; cradle_angle and machine_root_angle in deg; ratio_of_roll dimensionless"}
     return flanks, dict(machines, units=units)

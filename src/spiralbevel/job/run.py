@@ -12,6 +12,7 @@ from .blank import blank_from_design
 from ..errors import DesignError
 from .partial import PartialLog
 from .problems import with_design_keys
+from .rating import rating_report
 from .progress import Steps
 
 
@@ -83,6 +84,7 @@ def _run(spec, out, summary, kind, steps, manifest):
         summary.highlights.append(
             f"blank: delta1 = {math.degrees(blank.delta1):.4f} deg, delta2 = {math.degrees(blank.delta2):.4f} deg, "
             f"Rm = {blank.Rm:.4f} mm")
+        rating_report(spec, blank, report, summary)
         if kind == "log-spiral":
             from .run_logspiral import run_logspiral
 
@@ -102,7 +104,8 @@ def _run(spec, out, summary, kind, steps, manifest):
 
 def _logspiral_steps(spec) -> int:
     o = spec.output
-    return 4 + int(o.plots) + int(o.draft) + int(o.toolpaths) + int(o.stl) + int(o.step)
+    extra = 2 * int(spec.crowning is not None) + int(bool(o.draft and spec.manufacturing.forging_relief))
+    return 4 + int(o.plots) + int(o.draft) + int(o.toolpaths) + int(o.stl) + int(o.step) + extra
 
 
 def _facemilled_steps(spec) -> int:

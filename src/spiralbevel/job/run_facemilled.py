@@ -19,7 +19,7 @@ def run_facemilled(spec, blank, out, steps, report, summary):
         cmc = {name: d for name, d in synth.items() if hasattr(d, "multipoint")}
     with steps.step("generated flanks and curvatures"):
         grids = {k: st.flank.grid(n_face, n_profile) for k, st in setups.items()}
-        flanks, machines = fm.flank_report(setups)
+        flanks, machines = fm.flank_report(setups, blank)
         report["flanks"] = flanks
         report["machine_settings"] = machines
     with steps.step("tooth assembly"):
@@ -72,11 +72,18 @@ def run_facemilled(spec, blank, out, steps, report, summary):
                                      blank, setups)
             ltca_result, report["ltca"] = out_lt if failed is None else (None, failed)
             lt = report["ltca"]
-        if failed is None:
-            summary.highlights.append(
-                f"LTCA {lt['side']}: torque {lt['torque_Nm']:.2f} N m (approach 0.00635 mm at "
-                f"{lt['torque_for_approach_Nm']:.2f} N m), loaded TE {lt['max_loaded_transmission_error_arcsec']:.3f} "
-                f"arcsec, max pressure {lt['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
+            mark_failed(summary.partial, lt, f"loaded TCA, {spec.ltca.side} side")
+            if lt.get("status") == "failed":
+                summary.highlights.append(f"LTCA {spec.ltca.side}: failed ({lt['reason']})")
+            else:
+                summary.highlights.append(
+                    f"LTCA {lt['side']}: torque {lt['torque_Nm']:.2f} N m (approach 0.00635 mm at "
+                    f"{lt['torque_for_approach_Nm']:.2f} N m), loaded TE "
+                    f"{lt['max_loaded_transmission_error_arcsec']:.3f} "
+                    f"arcsec, max pressure {lt['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
+            from .rating import rating_ltca_report
+
+            rating_ltca_report(spec, blank, report, summary, ltca_result)
     with steps.step("ease-off and measurement grids"):
         from .inspection import easeoff_maps, measurement_files
 

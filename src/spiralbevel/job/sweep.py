@@ -1,8 +1,11 @@
 """Misalignment sweeps of a face-milled pair: TCA at every point of a grid of misalignments, in parallel with dask.
 
-Each task rebuilds the pair from the design (a pydantic model: small to ship to a worker) once per worker process and
-runs one TCA. With dask installed (extra ``dist``) the tasks run on dask's local processes, or on a cluster given by
-its scheduler address (``dask.distributed``); without it, one after the other in this process.
+The grid points are cut into a few batches per worker (:func:`sweep_batch`, one dask task each: the per-task overhead
+of the scheduler, a few ms, is paid a few times per worker instead of once per case). Each worker process rebuilds the
+pair from the design (a pydantic model as JSON: small to ship) once and keeps it for all its batches. With dask
+installed (extra ``dist``) the batches run on a pool of local processes that is kept for the next sweep of the session,
+or on a cluster given by its scheduler address (``dask.distributed``, ``--scheduler tcp://host:8786``); without dask,
+one after the other in this process.
 """
 
 from __future__ import annotations
@@ -10,6 +13,7 @@ from __future__ import annotations
 import functools
 import itertools
 import math
+import os
 
 import numpy as np
 
@@ -132,6 +136,39 @@ def sweep_point(spec_json: str, side: str, values: tuple, n_positions: int = 41)
                 mean_contact_h_mm=float(h))
 
 
+def sweep_batch(spec_json: str, side: str, points: list, n_positions: int = 41) -> list:
+    """:func:`sweep_point` for each misalignment of ``points`` (a list of value tuples, design units). A dask task."""
+    return [sweep_point(spec_json, side, tuple(p), n_positions) for p in points]
+
+
+#: batches per worker: enough to even out the load (cases near the edge of contact cost more), few enough that the
+#: per-task overhead stays negligible
+BATCHES_PER_WORKER = 4
+
+
+def _batches(points, n_workers):
+    """``points`` cut into at most BATCHES_PER_WORKER * n_workers contiguous batches of nearly equal size."""
+    n = max(1, min(len(points), BATCHES_PER_WORKER * max(1, n_workers)))
+    bounds = np.linspace(0, len(points), n + 1).round().astype(int)
+    return [points[a:b] for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
+
+
+@functools.lru_cache(maxsize=1)
+def _local_pool(n_workers: int):
+    """A process pool kept for the session (workers keep the pair built by :func:`_pair` between sweeps)."""
+    import atexit
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    pool = ProcessPoolExecutor(n_workers, mp_context=multiprocessing.get_context("spawn"))
+    atexit.register(pool.shutdown)  # stop the workers before the interpreter tears its modules down
+    return pool
+
+
+def _local_workers():
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+
+
 def misalignment_sweep(spec, grid: dict, side: str = "drive", scheduler: str | None = None,
                        n_positions: int = 41) -> list:
     """TCA over the Cartesian product of misalignment values.
@@ -184,12 +221,18 @@ def misalignment_sweep(spec, grid: dict, side: str = "drive", scheduler: str | N
         if scheduler is None:
             return [sweep_point(spec_json, side, p, n_positions) for p in points]
         raise MissingDependencyError("dask[distributed]", "dist", "A distributed sweep") from err
-    tasks = [dask.delayed(sweep_point)(spec_json, side, p, n_positions) for p in points]
     if scheduler is None:
-        return list(dask.compute(*tasks, scheduler="processes"))
+        n_workers = _local_workers()
+        tasks = [dask.delayed(sweep_batch)(spec_json, side, b, n_positions) for b in _batches(points, n_workers)]
+        # chunksize 1: dask would otherwise hand out ready tasks in groups of 6, leaving a worker idle
+        parts = dask.compute(*tasks, scheduler="processes", pool=_local_pool(n_workers), chunksize=1)
+        return [r for part in parts for r in part]
     try:
         from distributed import Client
     except ImportError as err:
         raise MissingDependencyError("dask[distributed]", "dist", "A distributed sweep") from err
     with Client(scheduler, timeout=20) as client:
-        return list(dask.compute(*tasks, scheduler=client))
+        n_workers = sum(client.nthreads().values())
+        tasks = [dask.delayed(sweep_batch)(spec_json, side, b, n_positions) for b in _batches(points, n_workers)]
+        parts = dask.compute(*tasks, scheduler=client)
+    return [r for part in parts for r in part]

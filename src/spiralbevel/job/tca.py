@@ -3,14 +3,18 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
 from ..conventions import Member, Side
-from ..errors import ConvergenceError, NoContactError
+from ..errors import ConvergenceError, NoContactError, SpiralBevelWarning
 from ..meshing.generated_surface import phased_for_pair
 from ..meshing.kinematics import BevelPairKinematics
 from ..meshing.tca import solve_tca
+
+#: fewest positions with a real-flank contact for which a side's TE curve (max, min, peak-to-peak) is reported
+MIN_TE_POSITIONS = 3
 
 SIDES = {"drive": (Side.CONCAVE, Side.CONVEX), "coast": (Side.CONVEX, Side.CONCAVE)}  # (pinion side, gear side)
 
@@ -33,14 +37,23 @@ def run_pair_tca(blank, setups, grids, n_positions: int = 41):
         outlines[name] = (grids[(Member.PINION, s1)].points @ c1._R.T, grids[(Member.GEAR, s2)].points @ c2._R.T)
         te = res.te_arcsec
         fin = np.isfinite(te)
-        if not np.any(fin):
+        edge_contacts = [{"position": i, "pinion_rotation_rad": float(res.phi1[i]), "pair": k, "member": m,
+                          "edge": e} for i, k, m, e in res.edges]
+        if fin.sum() < MIN_TE_POSITIONS:
             results[name] = None
-            section[name] = {"pinion_side": s1.value, "gear_side": s2.value, "error": "no contact at any position"}
+            msg = (f"TCA {name} side: contact of the real flanks at {int(fin.sum())} of {len(te)} positions (edge "
+                   f"contact at {len(res.edges)}): too few to define a transmission-error curve, none reported")
+            warnings.warn(msg, SpiralBevelWarning, stacklevel=2)
+            section[name] = {"pinion_side": s1.value, "gear_side": s2.value, "status": "too few contact positions",
+                             "positions": int(len(te)), "contact_positions": int(fin.sum()),
+                             "edge_contacts": edge_contacts, "error": msg}
             continue
         edge = np.nonzero(res.edge_contact)[0]
         section[name] = {
             "pinion_side": s1.value, "gear_side": s2.value,
-            "positions": int(len(te)),
+            "status": "ok" if not edge.size else "edge contact",
+            "positions": int(len(te)), "contact_positions": int(fin.sum()),
+            "edge_contacts": edge_contacts,
             "max_transmission_error_arcsec": float(np.max(te[fin])),
             "min_transmission_error_arcsec": float(np.min(te[fin])),
             "peak_to_peak_arcsec": float(np.ptp(te[fin])),

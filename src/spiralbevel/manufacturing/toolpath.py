@@ -361,3 +361,70 @@ def plan_toolpath(flank: FlankLike, domain, tool_radius: float, scallop_height: 
     return ToolPath(paths=tuple(paths), tool_radius=R, scallop_height=h, lead=lead, tilt=tilt, side=p.side,
                     predicted_scallop=np.array(pred), overrun=o)
 
+
+
+def follow_lines_of_curvature(surface, planned: ToolPath, *, step: float = 2e-3) -> ToolPath:
+    """The passes of ``planned`` re-traced along the lengthwise lines of curvature of a modified flank.
+
+    Parameters
+    ----------
+    surface : ContactSurface
+        The modified flank (e.g. crowned and forging-relieved), ``evaluate(params (..., 2)) -> (points, normals)``
+        in the same parameters (varphi, phi) as the flank of ``planned`` and in the frame the result is wanted in.
+    planned : ToolPath
+        Passes of the theoretical flank (:func:`plan_toolpath`): their start points, phi samples and spacing are kept.
+    step : float, rad
+        Parameter step of the generic differential geometry (:func:`spiralbevel.geometry.diffgeom.surface_geometry`).
+
+    Returns
+    -------
+    ToolPath
+        Same passes, re-traced: each starts at the theoretical pass's first point and follows the principal
+        direction of the modified flank that is closer to r_phi, integrated over phi with the classical Runge-Kutta
+        scheme on the phi samples of the pass. ``predicted_scallop`` is that of the theoretical flank (the
+        modifications change the stepover by a relative amount of the order of their slope).
+
+    Notes
+    -----
+    On the theoretical flank the lengthwise lines of curvature are the curves varphi = const (F = M = 0, seed 000
+    §5.2), which is what the re-tracing reproduces there. On a modified flank the principal direction field is that
+    of the generic differential geometry (Richardson-extrapolated derivatives of the points).
+    """
+    from ..geometry.diffgeom import surface_geometry
+
+    def point(u, v):
+        return surface.evaluate(np.stack(np.broadcast_arrays(u, v), -1))[0]
+
+    def slope(u, v):
+        """d varphi / d phi of the lengthwise principal direction at (u, v)."""
+        n = surface.evaluate(np.stack([u, v], -1))[1]
+        g = surface_geometry(point, u, v, reference=n, step=step)
+        A = np.stack([g.r_u, g.r_v], -1)
+        x = np.linalg.lstsq(A[0], g.e2[0], rcond=None)[0] if A.ndim == 2 else None
+        if x is None:
+            x = np.einsum("mij,mj->mi", np.linalg.pinv(A), g.e2)
+            return x[:, 0] / x[:, 1]
+        return x[0] / x[1]
+
+    paths = []
+    for p in planned.paths:
+        phi = np.asarray(p.phi, float)
+        vphi = np.empty_like(phi)
+        vphi[0] = p.varphi
+        for i in range(len(phi) - 1):
+            h = phi[i + 1] - phi[i]
+            u, v = np.array([vphi[i]]), np.array([phi[i]])
+            k1 = slope(u, v)
+            k2 = slope(u + 0.5 * h * k1, v + 0.5 * h)
+            k3 = slope(u + 0.5 * h * k2, v + 0.5 * h)
+            k4 = slope(u + h * k3, v + h)
+            vphi[i + 1] = vphi[i] + h * (k1 + 2 * k2 + 2 * k3 + k4)[0] / 6.0
+        r, n = surface.evaluate(np.stack([vphi, phi], -1))
+        t = np.gradient(r, axis=0)
+        t /= np.linalg.norm(t, axis=-1, keepdims=True)
+        axis = _axis(n, t, planned.lead, planned.tilt)
+        center = r + planned.tool_radius * n
+        arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(r, axis=0), axis=-1))])
+        paths.append(CuttingPath(varphi=float(p.varphi), phi=phi, psi=p.psi, surface=r, normal=n, feed=t,
+                                 center=center, tip=center - planned.tool_radius * axis, axis=axis, arc_length=arc))
+    return replace(planned, paths=tuple(paths))

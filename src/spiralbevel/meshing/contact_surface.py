@@ -28,6 +28,7 @@ __all__ = [
     "ContactSurface",
     "surface_derivatives",
     "surface_contains",
+    "surface_edge",
     "principal_curvatures",
     "NormalDeviation",
     "quadratic_crowning",
@@ -86,6 +87,25 @@ def surface_contains(surface, params):
     return np.ones(params.shape[:-1], bool)
 
 
+def surface_edge(surface, params):
+    """Name of the flank boundary that ``params (..., 2)`` lie beyond (the most violated one), "" where inside or
+    where the surface does not name its boundaries (``boundary_margins(params) -> (..., k)`` signed margins, >= 0
+    inside, and ``boundary_names`` (k,)), "flank" where it has only ``contains``."""
+    params = np.asarray(params, float)
+    shape = params.shape[:-1]
+    out = np.full(shape, "", dtype=object)
+    if hasattr(surface, "boundary_margins"):
+        with np.errstate(invalid="ignore"):
+            g = np.asarray(surface.boundary_margins(params), float)
+        g = np.where(np.isfinite(g), g, -np.inf)
+        k = np.argmin(g, axis=-1)
+        names = np.asarray(surface.boundary_names, dtype=object)
+        out = np.where(np.min(g, axis=-1) < 0, names[k], out)
+    elif hasattr(surface, "contains"):
+        out = np.where(surface_contains(surface, params), "", "flank").astype(object)
+    return out
+
+
 def principal_curvatures(surface, params):
     """Principal curvatures (convex = positive, w.r.t. the outward normal) and directions in the member frame.
 
@@ -130,6 +150,8 @@ class NormalDeviation:
             self.reference_params = base.reference_params
         if hasattr(base, "contains"):
             self.contains = base.contains
+        if hasattr(base, "boundary_margins"):
+            self.boundary_margins, self.boundary_names = base.boundary_margins, base.boundary_names
 
     def evaluate(self, params):
         r, n, dr, dn = surface_derivatives(self.base, params)

@@ -25,12 +25,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from scipy.special import ellipe, ellipk
+
 from .._core.tca import ellipse_axes, relative_curvature, weingarten
 from ..errors import DesignError
 from .contact_surface import surface_derivatives
 
 __all__ = ["ContactEllipse", "curvature_tensor", "contact_ellipse", "contact_ellipse_from_surfaces",
-           "GLEASON_APPROACH"]
+           "GLEASON_APPROACH", "hertz_semi_axes", "hertz_peak_pressure"]
 
 GLEASON_APPROACH = 0.00635
 """Elastic approach (mm) of the contact-ellipse convention, 0.00025 in (seed 001 §4.3.2)."""
@@ -121,3 +123,62 @@ def contact_ellipse_from_surfaces(surface1, params1, rot1, surface2, params2, ro
     n = np.einsum("...ij,...j->...i", rot1, n1)
     lam, d = relative_curvature(W1, W2, n)
     return ContactEllipse(ellipse_axes(lam, approach), d, lam, float(approach))
+
+
+def _hertz_shape(lam):
+    """Eccentricity data of the Hertz ellipse for relative curvatures ``lam (..., 2)``, lam_1 <= lam_2, both > 0.
+
+    With A = lam_1/2 <= B = lam_2/2, k = b/a and m = e^2 = 1 - k^2 solve (Johnson, Contact Mechanics, §4.2,
+    Eq. (4.39)) B/A = (E(m)/k^2 - K(m)) / (K(m) - E(m)); the right side falls monotonically from +inf (k -> 0) to 1
+    (k = 1), so bisection on log k (80 halvings: k to 1e-16 relative) is exact and array-based.
+    Returns (m, K(m), E(m), (K - E)/m), the last with its finite limit pi/4 as m -> 0.
+    """
+    lam = np.asarray(lam, float)
+    ratio = lam[..., 1] / lam[..., 0]
+    lo, hi = np.full(ratio.shape, np.log(1e-12)), np.zeros(ratio.shape)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        k = np.exp(mid)
+        m = 1.0 - k * k
+        K, E = ellipk(m), ellipe(m)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            g = (E / (k * k) - K) / (K - E)
+        g = np.where(m < 1e-12, 1.0, g)
+        big = g > ratio  # k too small
+        lo, hi = np.where(big, mid, lo), np.where(big, hi, mid)
+    k = np.exp(0.5 * (lo + hi))
+    m = 1.0 - k * k
+    K, E = ellipk(m), ellipe(m)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        kem = np.where(m > 1e-8, (K - E) / np.where(m > 1e-8, m, 1.0), np.pi / 4 * (1 + 3 * m / 8))
+    return m, K, E, kem
+
+
+def hertz_semi_axes(lam, approach):
+    """Semi-axes (..., 2) mm (a >= b) of the Hertz contact ellipse at the elastic approach ``approach`` mm.
+
+    The elastic contact (Hertz) is smaller than the geometric ellipse s(xi) = approach of :func:`ellipse_axes`: with
+    A = lam_1/2 (Johnson, Contact Mechanics, Eqs. (4.39)-(4.41)) a^2 = approach (K - E) / (A K e^2),
+    b = a sqrt(1 - e^2); a sphere (e = 0) gives a^2 = R approach, half of the geometric a^2 = 2 R approach. Non-positive lam: inf.
+    """
+    _check_approach(approach)
+    lam = np.asarray(lam, float)
+    ok = np.all(lam > 0, axis=-1) & np.all(np.isfinite(lam), axis=-1)
+    lam_ok = np.where(ok[..., None], lam, 1.0)
+    m, K, _, kem = _hertz_shape(lam_ok)
+    a = np.sqrt(approach * kem / (0.5 * lam_ok[..., 0] * K))
+    b = a * np.sqrt(1.0 - m)
+    return np.where(ok[..., None], np.stack([a, b], -1), np.inf)
+
+
+def hertz_peak_pressure(lam, force, estar):
+    """Hertz peak pressure p0 (N/mm^2) and semi-axes (a, b) mm of an elliptical contact under the normal force
+    ``force`` N with contact modulus ``estar`` N/mm^2: a^3 = 3 F (K - E) / (2 pi E* e^2 A), p0 = 3 F / (2 pi a b)
+    (Johnson, Contact Mechanics, Eqs. (4.37)-(4.41)). lam (..., 2) must be positive (point contact)."""
+    lam = np.asarray(lam, float)
+    if not np.all(lam > 0):
+        raise DesignError.single("lam", lam.tolist(), "> 0 (point contact)", "1/mm", "Hertz pressure")
+    m, K, _, kem = _hertz_shape(lam)
+    a = np.cbrt(3.0 * np.asarray(force, float) * kem / (2 * np.pi * estar * 0.5 * lam[..., 0]))
+    b = a * np.sqrt(1.0 - m)
+    return 3.0 * force / (2 * np.pi * a * b), np.stack([a, b], -1)

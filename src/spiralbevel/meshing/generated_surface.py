@@ -100,6 +100,24 @@ class GeneratedSurface:
             return ~off & (R >= ol.Ri) & (R <= ol.Re) & (h <= ol.h_face(R)) & (u >= gen.cp["u_j"])
 
 
+    boundary_names = ("toe", "heel", "top", "fillet", "generated")
+
+    def boundary_margins(self, params):
+        """Signed margins (..., 5) of (u, psi_c) to the flank boundaries ``boundary_names`` (>= 0 on the flank):
+        R - R_i and R_e - R (mm, toe and heel), h_face(R) - h (mm, top edge), u - u_j (mm, fillet junction) and
+        1 - |disc| (root of the equation of meshing of generation)."""
+        params = np.asarray(params, float)
+        gen = self.flank.generator
+        u, psi = np.broadcast_arrays(params[..., 0], params[..., 1])
+        sol = gen.contact(u, psi)
+        disc = 1.0 - np.abs(sol["disc"])
+        ax, rad = axial_radial(contact_point(sol, gen.mp), sol["psi"], gen.mp)
+        ol = self.flank.outline
+        with np.errstate(invalid="ignore"):
+            R, h = ol.Rh(ax, rad)
+            return np.stack([R - ol.Ri, ol.Re - R, ol.h_face(R) - h, u - gen.cp["u_j"], disc], -1)
+
+
 def phased_for_pair(pinion_flank, gear_flank):
     """Contact surfaces of a pinion and a gear flank turned so that their mean points meet at zero roll.
 

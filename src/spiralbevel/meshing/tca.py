@@ -2,8 +2,9 @@
 :class:`~spiralbevel.meshing.contact_surface.ContactSurface` flanks.
 
 For each pinion rotation phi1 the contact system (coincident points, opposite outward normals; 5 equations in the
-two surface parameters of each flank and the gear rotation phi2) is solved for every tooth pair. The pair in contact
-is the one that leads the gear furthest in its driven direction, i.e. the largest TE in the sign convention of
+two surface parameters of each flank and the gear rotation phi2) is solved for every tooth pair. Only solutions
+with both points on the real flanks (the surfaces' ``contains``) are contacts; the pair in contact is the one of
+them that leads the gear furthest in its driven direction, i.e. the largest TE in the sign convention of
 :class:`~spiralbevel.meshing.tca_result.TCAResult` (seed 001 §5 calls it the pair with the "least transmission
 error": with TE curves <= 0 that is the least in magnitude; docs/conventions.md "Misalignments" and "TCA").
 
@@ -34,7 +35,7 @@ from .._core import tca as _k
 from .._core import tca_batch as _b
 from ..errors import DesignError, NoContactError, Problem
 from .contact_problem import ContactProblem
-from .contact_surface import surface_contains
+from .contact_surface import surface_contains, surface_edge
 from .ellipse import GLEASON_APPROACH
 from .misalignment import Misalignment
 from .tca_result import ContactStatus, TCAResult
@@ -183,7 +184,7 @@ def _solve_reachable(prob, phi_eff, guess, reach, tol):
 def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = None, phi1_mean: float = 0.0,
               n_positions: int = 41, pairs=(-1, 0, 1), start=None, approach: float = GLEASON_APPROACH,
               tol: float = 1e-10, line_tol: float = 1e-7, line_anchor: int | None = 1,
-              te_tie: float = 1e-11) -> TCAResult:
+              te_tie: float = 1e-11, flank_bounds: bool = True) -> TCAResult:
     """Tooth contact analysis over one mesh cycle (2 pi / z1 of pinion rotation centred on the mean point).
 
     Parameters
@@ -213,8 +214,12 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         (0 or 1) equals its reference value (for the log-spiral flank, index 1 = phi: mid-face); None keeps the
         minimum-norm Newton point.
     te_tie : float, rad
-        Pairs whose TE is within ``te_tie`` of the largest share the load (line contact of conjugate flanks); among
-        them a pair inside its flank domains is reported.
+        Pairs whose TE is within ``te_tie`` of the largest share the load (line contact of conjugate flanks); the
+        first of them in ``pairs`` order is reported.
+    flank_bounds : bool
+        True (default): a contact counts only where both points lie on the real flanks (the surfaces' ``contains``:
+        toe, heel, top and fillet junction); False: the analytically extended surfaces are the flanks (the idealized
+        model of seed 001 Eq. (16), which has no edges).
 
     Returns
     -------
@@ -295,26 +300,45 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     # converged to a spurious intersection of the analytically extended surfaces
     valid &= np.abs(te) < np.pi / z2
     inside = surface_contains(pinion, x[:, 0:2]) & surface_contains(gear, x[:, 2:4])
+    if not flank_bounds:
+        inside = np.ones_like(inside)
     sp = np.full(n * P, int(ContactStatus.NO_CONTACT))
     sp[valid & inside & ~line] = ContactStatus.OK
     sp[valid & inside & line] = ContactStatus.LINE
     sp[valid & ~inside] = ContactStatus.EDGE
     te = np.where(valid, te, np.nan)
-    # pair in contact: largest TE among valid solutions
     te2 = te.reshape(n, P)
-    anyv = np.any(np.isfinite(te2), axis=1)
-    if not np.any(anyv):
+    if not np.any(np.isfinite(te2)):
         raise NoContactError(f"no contact at any of the {n} positions phi1 in [{phi1[0]:.6g}, {phi1[-1]:.6g}] rad")
     sp2 = sp.reshape(n, P)
-    # ties (several pairs at the same TE, e.g. line contact of conjugate flanks): prefer a pair inside its domain
-    tmax = np.max(np.where(np.isfinite(te2), te2, -np.inf), axis=1, keepdims=True)
-    score = np.where(np.isfinite(te2), te2, -np.inf)
-    tie = score >= tmax - te_tie
-    score = np.where(tie, tmax + np.where(sp2 != ContactStatus.EDGE, 1.0, 0.0) + te2 - tmax, score)
+    # pair in contact: the largest TE among *physical* contacts (both points on the real flanks); a solution of the
+    # extended surfaces (EDGE) never wins the selection
+    phys = (sp2 == ContactStatus.OK) | (sp2 == ContactStatus.LINE)
+    score = np.where(phys, te2, -np.inf)
+    anyv = np.any(phys, axis=1)
+    # ties (several pairs at the same TE, e.g. line contact of conjugate flanks): the first pair in `pairs` order
     sel = np.where(anyv, np.argmax(score, axis=1), -1)
     status = np.where(anyv, sp2[np.arange(n), np.maximum(sel, 0)], int(ContactStatus.NO_CONTACT))
+    # where the extended surfaces of a pair would touch before the best physical contact, that pair's real flanks end
+    # first: the contact there is an edge contact of the boundary crossed (or the physical contact, whichever leads),
+    # which this surface-to-surface solution does not resolve: status EDGE, no TE reported at that position
+    ext = np.where(sp2 == ContactStatus.EDGE, te2, -np.inf)
+    best_phys = np.max(score, axis=1)
+    j_ext = np.argmax(ext, axis=1)
+    edge_pos = np.max(ext, axis=1) > best_phys + te_tie
+    status = np.where(edge_pos, int(ContactStatus.EDGE), status)
+    i_edge = np.flatnonzero(edge_pos)
+    edges = []
+    if i_edge.size:
+        fl = i_edge * P + j_ext[i_edge]
+        e1 = surface_edge(pinion, x[fl, 0:2])
+        e2 = surface_edge(gear, x[fl, 2:4])
+        for a, i in enumerate(i_edge):
+            member = "pinion" if e1[a] else "gear"
+            edges.append((int(i), int(pairs[j_ext[i]]), member, str(e1[a] or e2[a] or "flank")))
     # ellipses at the selected contacts
     flat = np.arange(n) * P + np.maximum(sel, 0)
+    nocon_or_edge = ~anyv | edge_pos
     # positions without contact may carry no surface data (unsolved systems): a flat dummy keeps LAPACK off NaN
     dummy = np.array([[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]])
     nc = ~anyv[:, None, None]
@@ -329,20 +353,21 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     axes_ = np.where((status == ContactStatus.LINE)[:, None], np.inf, axes_)
     dirs1 = np.einsum("mji,mkj->mki", R1[flat], dirs)
     dirs2 = np.einsum("mji,mkj->mki", R2[flat], dirs)
-    nocon = ~anyv
     for arr in (lam, axes_, dirs1, dirs2):
-        arr[nocon] = np.nan
+        arr[nocon_or_edge] = np.nan
     # transfer points: where the pair in contact changes
     transfers = []
     for i in range(n - 1):
         a, b = sel[i], sel[i + 1]
-        if a >= 0 and b >= 0 and a != b:
+        # a change of pair across an edge contact (status EDGE) is not a crossing of two surface contacts
+        if a >= 0 and b >= 0 and a != b and not (edge_pos[i] or edge_pos[i + 1]):
             d0 = te2[i, b] - te2[i, a]
             d1 = te2[i + 1, b] - te2[i + 1, a]
             if np.isfinite(d0) and np.isfinite(d1) and max(abs(d0), abs(d1)) <= te_tie:
                 continue  # shared contact (tie), not a transfer
             if np.isfinite(d0) and np.isfinite(d1) and d1 != d0:
-                transfers.append(phi1[i] + (phi1[i + 1] - phi1[i]) * (-d0) / (d1 - d0))
+                f = min(max(-d0 / (d1 - d0), 0.0), 1.0)
+                transfers.append(phi1[i] + (phi1[i + 1] - phi1[i]) * f)
             else:
                 transfers.append(0.5 * (phi1[i] + phi1[i + 1]))
 
@@ -356,5 +381,5 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         point_fixed=rs(pf), normal_fixed=rs(n1f), residual=rs(res), pair=sel, status=status,
         semi_axes=axes_, ellipse_dirs1=dirs1, ellipse_dirs2=dirs2, relative_curvatures=lam,
         approach=float(approach), transfer_phi1=np.array(transfers), z1=z1, z2=z2,
-        shaft_angle=prob.shaft_angle, iterations=int(iters),
+        shaft_angle=prob.shaft_angle, iterations=int(iters), edges=tuple(edges),
     )

@@ -18,8 +18,10 @@ class ContactStatus(IntEnum):
 
     OK : point contact inside both flank domains.
     LINE : line contact (exact conjugate surfaces; the contact system is singular along the line).
-    EDGE : the contact point of the extended surfaces lies outside a flank domain: on the real flanks the contact
-        is an edge contact, which is reported, not extrapolated (for a position: the pair in contact is such a pair).
+    EDGE : for a pair, the solution of the analytically extended surfaces lies outside a flank domain (it is not a
+        contact of the real flanks and never selected); for a position, such a pair would touch before the best
+        contact of the real flanks: the real contact there is an edge contact of the boundary crossed (``edges``),
+        which is not solved, so the position reports no TE, point or ellipse (NaN) rather than an extrapolated one.
     NO_CONTACT : no solution found (Newton diverged, or the normals are not opposite).
     """
 
@@ -64,7 +66,8 @@ class TCAResult:
     residual : (n, P) float, mm
         Final max|F|.
     pair : (n,) int
-        Index into ``pairs`` of the pair in contact (the one with the largest TE: it leads the gear), -1 if none.
+        Index into ``pairs`` of the pair in contact: the largest TE among contacts inside both real flanks (it leads
+        the gear), -1 if none.
     status : (n,) int
         :class:`ContactStatus` of the position.
     semi_axes : (n, 2) float, mm
@@ -82,6 +85,9 @@ class TCAResult:
     shaft_angle : float, rad
     iterations : int
         Newton iterations of the final batched solve.
+    edges : tuple of (int, int, str, str)
+        Per EDGE position: (position index, tooth pair k, member "pinion"/"gear" whose boundary is crossed, edge name
+        such as "top", "toe", "heel", "root", "fillet").
     """
 
     phi1: np.ndarray
@@ -113,12 +119,13 @@ class TCAResult:
     z2: int
     shaft_angle: float
     iterations: int
+    edges: tuple = ()
 
     # ------------------------------------------------------------------ selected contact
     def _pick(self, arr):
         arr = np.asarray(arr)
         out = np.full((arr.shape[0],) + arr.shape[2:], np.nan)
-        ok = self.pair >= 0
+        ok = (self.pair >= 0) & (np.asarray(self.status) != ContactStatus.EDGE)
         out[ok] = arr[np.nonzero(ok)[0], self.pair[ok]]
         return out
 

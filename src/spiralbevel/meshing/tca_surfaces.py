@@ -138,6 +138,27 @@ class LogSpiralSurface:
             ok &= (p[..., 1] >= lo - tol) & (p[..., 1] <= hi + tol)
         return ok
 
+    def boundary_margins(self, params):
+        """Signed margins (..., 4) rad of ``params`` to the domain boundaries ``boundary_names`` (>= 0 inside; a
+        missing range gives +inf): the psi bounds are the root and face cones, the phi bounds the toe and heel."""
+        p = np.asarray(params, float)
+        inf = np.full(p.shape[:-1], np.inf)
+        out = [inf, inf, inf, inf]
+        if self.psi_range is not None:
+            psi = (p[..., 0] - p[..., 1]) * np.sin(self.delta)
+            lo, hi = sorted(self.psi_range)
+            # |psi| grows from the root cone to the face cone (psi = 0 is the base-cone edge)
+            m_lo, m_hi = psi - lo, hi - psi
+            out[0], out[1] = (m_lo, m_hi) if lo > 0 else (m_hi, m_lo)
+        if self.phi_range is not None:
+            lo, hi = sorted(self.phi_range)
+            a, b = p[..., 1] - lo, hi - p[..., 1]
+            # phi grows toward the heel when the spiral radius rho0 exp(phi sin(delta)/tan(beta)) grows
+            out[2], out[3] = (a, b) if np.sin(self.delta) / np.tan(self.beta) > 0 else (b, a)
+        return np.stack(out, -1)
+
+    boundary_names = ("root", "top", "toe", "heel")
+
     def params_of(self, psi, phi):
         """(varphi, phi) stacked (..., 2) from psi and phi (rad)."""
         psi, phi = np.broadcast_arrays(np.asarray(psi, float), np.asarray(phi, float))

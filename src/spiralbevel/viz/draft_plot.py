@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .layout import fixed_layout
+
 __all__ = ["plot_draft"]
 
 
@@ -85,5 +87,5 @@ def plot_draft_maps(results):
                      f"v_d = {d}", fontsize=8)
     for ax in list(axes.flat)[n:]:
         ax.set_visible(False)
-    fig.tight_layout()
+    fixed_layout(fig, rows, cols, right=0.2, wspace=0.9, hspace=0.8)
     return fig

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .layout import fixed_layout
+
 
 def projected(points):
     """Axial position z and radius from the axis of member-frame points (..., 3), mm."""
@@ -49,7 +51,7 @@ def plot_flank_fields(panels, title="", cmap="coolwarm", symmetric=True):
         ax.set_visible(False)
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
+    fixed_layout(fig, rows, cols, suptitle=bool(title))
     return fig
 
 
@@ -81,5 +83,5 @@ def plot_domain_fields(panels, title="", ncols=4):
         ax.set_visible(False)
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
+    fixed_layout(fig, rows, ncols, suptitle=bool(title))
     return fig

@@ -150,3 +150,17 @@ def test_crossed_cylinders_within_2_percent_of_hertz_and_converging():
         assert approach == pytest.approx(dl, rel=0.02)
     # peak pressure converges at second order in the cell size (measured 4.7x per halving at nb = 4 -> 8)
     assert err[4] / err[8] > 3.0
+
+
+def test_library_hertz_ellipse_matches_the_reference():
+    """meshing.ellipse's array-based Hertz solution (bisection on b/a) against the brentq reference above, from the
+    sphere to a 1:400 curvature ratio (tooth contacts are 1:10 to 1:200)."""
+    from spiralbevel.meshing.ellipse import hertz_peak_pressure, hertz_semi_axes
+
+    # 1e-8: the reference's brentq stops at |dm| ~ 2e-12, which moves b = a sqrt(1 - m) by ~1e-9 at m -> 1
+    for lam in ([0.05, 0.05], [0.02, 0.05], [0.002, 0.08], [0.0002, 0.08]):
+        A, B = 0.5 * np.array(lam)
+        a, b, p0, dl = hertz(A, B, 1500.0, ESTAR)
+        p, ab = hertz_peak_pressure(np.array(lam), 1500.0, ESTAR)
+        assert p == pytest.approx(p0, rel=1e-8) and ab == pytest.approx([a, b], rel=1e-8)
+        assert hertz_semi_axes(np.array(lam), dl) == pytest.approx([a, b], rel=1e-8)

@@ -10,7 +10,9 @@ For every mesh position i and tooth pair k of the TCA (pinion tooth k against ge
 * the long axis e1 of the contact ellipse: the eigenvector of the smaller eigenvalue of the relative curvature
   K1 + K2 (Weingarten tensors of both surfaces in the pair frame), oriented away from the apex;
 * exact separations w(s, t) along n on the tangent-plane grid around P (:func:`.separation.posed_separations`, both
-  surfaces placed at the pair's own rotations phi1, phi2 of the TCA), so that w = 0 at P;
+  surfaces placed at the pair's own rotations phi1, phi2 of the TCA), so that w = 0 at P; the grid is sized from
+  that contact's own Hertz ellipse (:func:`default_extents`), not from the largest ellipse of the cycle, so that
+  its cells resolve the loaded contact width at every position;
 * the pair's unloaded TE (seed 001 Eq. (1), sign of TCAResult);
 * poses to the FE segment models: pinion r = R_z(phi1)^T (x - o1) on segment tooth k (the segment's tooth k is the
   reference tooth turned by +2 pi k/z1, as in TCA), gear r = (R(a2, phi2) B2)^T (x - o2) on segment tooth -k (TCA's
@@ -34,6 +36,7 @@ from ..._core.rotations import rot_z
 from ..._core.tca import relative_curvature, weingarten
 from ...errors import DesignError, NoContactError
 from ..contact_problem import ContactProblem
+from ..ellipse import hertz_semi_axes
 from ..tca_result import ContactStatus
 from .compliance import ToothCompliance, tooth_compliance
 from .halfspace import STEEL, Material, contact_modulus
@@ -156,17 +159,27 @@ class _Tabulated:
         return self.w
 
 
-def default_extents(tca, approach=APPROACH_TARGET, factor=4.0, cap=None):
-    """Half extents (mm) of the potential-contact grid: the geometric ellipse of ``factor`` x ``approach`` at the
-    largest contact ellipse of the TCA (sqrt(2 factor approach / lam_i)), the long one capped at ``cap``."""
-    lam = np.asarray(tca.relative_curvatures, float)
-    lam = lam[np.all(np.isfinite(lam), axis=1)]
-    cap = float(cap) if cap is not None else 20.0
-    if lam.size == 0:
-        return cap, 1.0
-    with np.errstate(divide="ignore"):
-        a = np.sqrt(2 * factor * approach / np.maximum(lam, 0.0))
-    return float(min(np.max(a[:, 0]), cap)), float(min(np.max(a[:, 1]), cap))
+#: elastic approach (mm) at which the potential-contact grid is sized: 4 x the approach target covers the loaded
+#: contact up to about 8 x the approach torque (approach ~ load^(2/3) in Hertz contact)
+SIZING_APPROACH = 4.0 * APPROACH_TARGET
+#: grid half extents = this margin x the Hertz semi-axes at SIZING_APPROACH
+SIZING_MARGIN = 1.25
+#: cap (mm) of a half extent (line and near-line contact: the flank ends bound the contact, points off it are dropped)
+SIZING_CAP = 20.0
+
+
+def default_extents(lam, approach=SIZING_APPROACH, margin=SIZING_MARGIN, cap=SIZING_CAP):
+    """Half extents (..., 2) mm of the potential-contact grid of contacts with relative curvatures ``lam (..., 2)``:
+    ``margin`` x the Hertz semi-axes at the elastic approach ``approach``
+    (:func:`~spiralbevel.meshing.ellipse.hertz_semi_axes`), each capped at ``cap``.
+
+    Sized per position and pair from that contact alone, the default ``grid`` (21, 7) puts about 2 x 7 / (2 x 1.25 x
+    2) ~ 3 cells across the loaded width at the approach torque, and more at the higher torques of a rating."""
+    lam = np.asarray(lam, float)
+    ab = margin * hertz_semi_axes(lam, approach)
+    # line contact across (lam_2 <= 0 cannot carry load in the tangent plane): a 1 mm wide strip
+    ab[..., 1] = np.where(np.isfinite(ab[..., 1]), ab[..., 1], 1.0)
+    return np.minimum(ab, cap)
 
 
 def contact_positions(pinion, gear, kinematics, tca, *, misalignment=None, grid=(21, 7), half_length=None,
@@ -186,24 +199,22 @@ def contact_positions(pinion, gear, kinematics, tca, *, misalignment=None, grid=
         Potential contact points per pair along the ellipse's major and minor axes (odd counts put a point on the
         contact point itself).
     half_length, half_width : float, mm, optional
-        Half extents of that grid; default :func:`default_extents`.
+        Half extents of that grid at every position and pair; default: each contact's own Hertz ellipse
+        (:func:`default_extents`, stored in ``PairContact.extents``).
 
     Returns
     -------
     positions : list of ContactPosition
         ``pinion_angle`` = phi1 - phi10; pairs in ``tca.pairs`` order, None where the TCA found no contact.
-    extents : (float, float), mm
-        The half extents used.
+    extents : (float or None, float or None), mm
+        The half extents given (None: per contact).
 
     Raises
     ------
     NoContactError
         A position where the TCA found no contact for any pair.
     """
-    _check(1.0, [None], grid, half_length or 1.0, half_width or 1.0)
-    hl0, hw0 = default_extents(tca)
-    half_length = float(half_length) if half_length is not None else hl0
-    half_width = float(half_width) if half_width is not None else hw0
+    _check(1.0, [None], grid, half_length, half_width)
     st = _pair_states(pinion, gear, kinematics, tca, misalignment)
     none = np.flatnonzero(~st["valid"].any(axis=1))
     if none.size:
@@ -211,22 +222,30 @@ def contact_positions(pinion, gear, kinematics, tca, *, misalignment=None, grid=
         raise NoContactError(f"no tooth pair in contact in the TCA at mesh position {i} (phi1 = {tca.phi1[i]:.6g} "
                              f"rad): loaded TCA needs contact at every position")
     prob = st["prob"]
-    s, t = _cells(grid[0], half_length), _cells(grid[1], half_width)
     m = len(st["ii"])
+    # per pair and position: the half extents of its own contact (Hertz ellipse), unless given
+    ext = default_extents(st["lam"])
+    if half_length is not None:
+        ext[:, 0] = float(half_length)
+    if half_width is not None:
+        ext[:, 1] = float(half_width)
     R1f = rot_z(st["phi1"])                                      # pinion member -> fixed (actual rotation)
     R2f = np.einsum("mij,mjk->mik", st["R2"], rot_z(2 * np.pi * st["k"] / prob.z2))  # R(a2, phi2) B2
+    # one batched separation solve, each contact on its own grid
+    s = np.stack([_cells(grid[0], hl) for hl in ext[:, 0]]) if m else np.zeros((0, grid[0]))
+    t = np.stack([_cells(grid[1], hw) for hw in ext[:, 1]]) if m else np.zeros((0, grid[1]))
     sep = posed_separations(prob.pinion, prob.gear, (st["R1"], st["o1"]), (st["R2"], st["o2"]),
                             tca.params1[st["ii"], st["jj"]], tca.params2[st["ii"], st["jj"]], st["P"], st["n"],
                             st["e1"], s, t)
+    w = [_Tabulated(s[a], t[a], sep.w[a]) for a in range(m)]
     n_pos, n_pairs = tca.te_pairs.shape
     table = [[None] * n_pairs for _ in range(n_pos)]
     for a in range(m):
         i, j = int(st["ii"][a]), int(st["jj"][a])
         table[i][j] = PairContact(
             point=st["P"][a], normal=st["n"][a], direction=st["e1"][a], te=float(tca.te_pairs[i, j]),
-            separation=_Tabulated(s, t, sep.w[a]),
-            to_pinion=(R1f[a].T, st["o1"][a]), to_gear=(R2f[a].T, st["o2"][a]),
-            tooth_pinion=int(st["k"][a]), tooth_gear=-int(st["k"][a]))
+            separation=w[a], to_pinion=(R1f[a].T, st["o1"][a]), to_gear=(R2f[a].T, st["o2"][a]),
+            tooth_pinion=int(st["k"][a]), tooth_gear=-int(st["k"][a]), extents=(float(ext[a, 0]), float(ext[a, 1])))
     positions = [ContactPosition(float(tca.phi1[i] - tca.phi1_mean), table[i]) for i in range(n_pos)]
     return positions, (half_length, half_width)
 
@@ -244,7 +263,8 @@ class LTCAModel:
     gear_axis, gear_origin : (3,) float
         a2 and o2 of the (misaligned) assembly, pair frame.
     grid : (int, int)
-    half_length, half_width : float, mm
+    half_length, half_width : float or None, mm
+        Common half extents of the potential-contact grids, None where each contact carries its own.
     z1, z2 : int
     pairs : tuple of int
         Tooth-pair indices k of the TCA (pinion tooth k, gear tooth k), in the order of each position's pairs.
@@ -257,8 +277,8 @@ class LTCAModel:
     gear_axis: np.ndarray
     gear_origin: np.ndarray
     grid: tuple
-    half_length: float
-    half_width: float
+    half_length: Optional[float]
+    half_width: Optional[float]
     z1: int
     z2: int
     pairs: tuple
@@ -384,7 +404,8 @@ def loaded_tca(pinion_surface, gear_surface, kinematics, tca_result, torque: flo
     grid : (int, int)
         Potential contact points per pair (major, minor axis).
     half_length, half_width : float, mm, optional
-        Grid half extents (default: 2x the geometric contact ellipse of 0.00635 mm at the largest TCA ellipse).
+        Grid half extents (default: per position and pair, 1.25 x the Hertz ellipse of that contact at an approach of
+        4 x 0.00635 mm, :func:`default_extents`).
     rigid : bool
         Skip the FE compliances (contact flattening only).
     approach_target : float or None, mm

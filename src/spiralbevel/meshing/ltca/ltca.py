@@ -60,6 +60,9 @@ class PairContact:
         sits at tooth_* pitch angles from the reference tooth).
     tooth_pinion, tooth_gear : int
         FE tooth index of the pair in each member's segment model (-1, 0, +1 for a 3-tooth segment).
+    extents : (float, float), mm, optional
+        Half extents (along ``direction``, across it) of this pair's potential-contact grid; None: the driver's
+        ``half_length``, ``half_width``.
     """
 
     point: np.ndarray
@@ -72,6 +75,7 @@ class PairContact:
     to_gear: tuple = (np.eye(3), np.zeros(3))
     tooth_pinion: int = 0
     tooth_gear: int = 0
+    extents: Optional[tuple] = None
 
 
 @dataclass(frozen=True)
@@ -92,7 +96,7 @@ class _System:
     x2: np.ndarray
     pair: np.ndarray
     flat: np.ndarray  # index in the full (n_pairs, ns, nt) grid
-    cell: float
+    cell: np.ndarray  # area (mm^2) of each point's cell
     te: np.ndarray
     h0: np.ndarray  # lever arm at each pair's contact point
 
@@ -106,13 +110,17 @@ def _grid(ns, nt, half_length, half_width):
 
 def _assemble(k, pos, comp1, comp2, a2, o2, grid, half_length, half_width, estar) -> _System:
     ns, nt = grid
-    s, t, ds, dt = _grid(ns, nt, half_length, half_width)
-    S, T = np.meshgrid(s, t, indexing="ij")
     blocks, te = [], np.full(len(pos.pairs), np.nan)
     h0 = np.full(len(pos.pairs), np.nan)
     for j, pc in enumerate(pos.pairs):
         if pc is None:
             continue
+        hl, hw = pc.extents if pc.extents is not None else (half_length, half_width)
+        if hl is None or hw is None:
+            raise DesignError.single(f"positions[{k}].pairs[{j}].extents", None, "(half_length, half_width) > 0",
+                                     "mm", "LTCA potential contact grid (or the driver's half_length, half_width)")
+        s, t, ds, dt = _grid(ns, nt, float(hl), float(hw))
+        S, T = np.meshgrid(s, t, indexing="ij")
         P, n = np.asarray(pc.point, float), np.asarray(pc.normal, float)
         n = n / np.linalg.norm(n)
         e1 = np.asarray(pc.direction, float) - np.dot(pc.direction, n) * n
@@ -140,11 +148,13 @@ def _assemble(k, pos, comp1, comp2, a2, o2, grid, half_length, half_width, estar
         x1 = (q - np.asarray(o1)) @ np.asarray(R1).T
         x2 = (q - np.asarray(og)) @ np.asarray(R2).T
         flat = j * ns * nt + np.arange(ns * nt)
+        xy = np.stack([S.ravel(), T.ravel()], 1)
         blocks.append((q.reshape(-1, 3), x1.reshape(-1, 3), x2.reshape(-1, 3), w.ravel(), h.ravel(), flat,
-                       np.full(ns * nt, j), np.full(ns * nt, pc.tooth_pinion), np.full(ns * nt, pc.tooth_gear)))
+                       np.full(ns * nt, j), np.full(ns * nt, pc.tooth_pinion), np.full(ns * nt, pc.tooth_gear),
+                       xy, np.tile([ds, dt], (ns * nt, 1))))
     if not blocks:
         raise NoContactError(f"no tooth pair in mesh at mesh position {k} (pinion angle {pos.pinion_angle:.6g} rad)")
-    q, x1, x2, w, h, flat, pair, k1, k2 = (np.concatenate(c) for c in zip(*blocks))
+    q, x1, x2, w, h, flat, pair, k1, k2, xy, dsdt = (np.concatenate(c) for c in zip(*blocks))
     keep = np.isfinite(w)
     W1 = W2 = None
     if comp1 is not None:
@@ -163,11 +173,12 @@ def _assemble(k, pos, comp1, comp2, a2, o2, grid, half_length, half_width, estar
         Wk = W2[keep]
         C += Wk @ comp2.G @ Wk.T
     pk = pair[keep]
+    xy, dsdt = xy[keep], dsdt[keep]
     for j in np.unique(pk):
         sel = np.flatnonzero(pk == j)
-        xy = np.stack([S.ravel(), T.ravel()], 1)[flat[keep][sel] - j * ns * nt]
-        C[np.ix_(sel, sel)] += halfspace_flexibility(xy, ds, dt, estar)
-    return _System(C, w[keep], h[keep], q[keep], x1[keep], x2[keep], pk, flat[keep], ds * dt, te, h0)
+        C[np.ix_(sel, sel)] += halfspace_flexibility(xy[sel], dsdt[sel[0], 0], dsdt[sel[0], 1], estar)
+    return _System(C, w[keep], h[keep], q[keep], x1[keep], x2[keep], pk, flat[keep], dsdt[:, 0] * dsdt[:, 1], te,
+                   h0)
 
 
 def _check(torque, positions, grid, half_length, half_width):
@@ -178,6 +189,8 @@ def _check(torque, positions, grid, half_length, half_width):
     if len(grid) != 2 or min(grid) < 1:
         raise DesignError.single("grid", grid, "(n_major >= 1, n_minor >= 1)", "-", "LTCA potential contact grid")
     for name, v in (("half_length", half_length), ("half_width", half_width)):
+        if v is None:  # per-pair extents (PairContact.extents); checked where used
+            continue
         if not (np.isfinite(v) and v > 0):
             raise DesignError.single(name, v, "> 0", "mm", "LTCA potential contact grid")
 
@@ -204,8 +217,9 @@ def run_ltca(positions: Sequence[ContactPosition], torque: float, pinion_complia
         A point of the gear axis.
     grid : (int, int)
         Potential contact points per pair along the major and the minor axis.
-    half_length, half_width : float, mm
-        Half extents of that grid (points off either flank grid are dropped when compliances are given).
+    half_length, half_width : float or None, mm
+        Half extents of that grid for pairs without their own ``PairContact.extents`` (points off either flank grid
+        are dropped when compliances are given).
     material_pinion, material_gear : Material
         For the contact modulus of the half-space term.
     mean_position : int, optional

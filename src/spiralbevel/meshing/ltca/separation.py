@@ -160,8 +160,8 @@ def posed_separations(surface1, surface2, poses1, poses2, uv1, uv2, point, norma
         Surface parameters of the contact points.
     point, normal, e1 : (m, 3) float
         Contact points (mm), unit normals outward from body 1, and first tangent directions (common frame).
-    s, t : (ns,), (nt,) float, mm
-        Grid coordinates along e1 and e2 = normal x e1.
+    s, t : (ns,), (nt,) or (m, ns), (m, nt) float, mm
+        Grid coordinates along e1 and e2 = normal x e1 (one grid for all contacts, or one per contact).
     tol : float, mm
         Residual tolerance of the intersections.
 
@@ -182,8 +182,11 @@ def posed_separations(surface1, surface2, poses1, poses2, uv1, uv2, point, norma
     e2 = np.cross(n0, e1)
     s = np.atleast_1d(np.asarray(s, float))
     t = np.atleast_1d(np.asarray(t, float))
-    S, Tt = np.meshgrid(s, t, indexing="ij")
-    q = P[:, None, None] + S[None, ..., None] * e1[:, None, None] + Tt[None, ..., None] * e2[:, None, None]
+    # one grid for all contacts (ns,), (nt,) or one per contact (m, ns), (m, nt)
+    S = s[..., :, None] * np.ones(t.shape[-1])
+    Tt = t[..., None, :] * np.ones((s.shape[-1], 1))
+    S, Tt = np.broadcast_to(S, (len(P),) + S.shape[-2:]), np.broadcast_to(Tt, (len(P),) + Tt.shape[-2:])
+    q = P[:, None, None] + S[..., None] * e1[:, None, None] + Tt[..., None] * e2[:, None, None]
     shape = q.shape[:-1]
     N = int(np.prod(shape))
     qf = q.reshape(N, 3)

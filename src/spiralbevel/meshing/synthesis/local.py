@@ -184,7 +184,7 @@ def _validate(eta, semi_major_axis, m21_prime, te_magnitude, approach, depth):
 
 def synthesize_pinion(gear_cutter, gear_settings, blank, *, side=Side.CONCAVE, eta, semi_major_axis,
                       m21_prime=None, te_magnitude=None, approach=GLEASON_APPROACH, pinion_cutter_hint=None,
-                      free=FREE_DEFAULT, depth=0.0) -> SynthesisResult:
+                      free=FREE_DEFAULT, depth=0.0, pinion_settings_hint=None) -> SynthesisResult:
     """Pinion head cutter and machine settings by local synthesis at the mean contact point.
 
     Parameters
@@ -217,6 +217,9 @@ def synthesize_pinion(gear_cutter, gear_settings, blank, *, side=Side.CONCAVE, e
         machine centre: E_m1 = X_B1 = X_D1 = 0) and stays fixed.
     depth : float, mm
         Depth of M below the gear's pitch line at the mean cone distance.
+    pinion_settings_hint : MachineSettings, optional
+        Starting settings in place of ``MachineSettings.from_blank`` (e.g. the pinion's solved basic settings, whose
+        root cone lies on the cradle plane: the quantities not in ``free`` keep it there).
 
     Returns
     -------
@@ -254,7 +257,8 @@ def synthesize_pinion(gear_cutter, gear_settings, blank, *, side=Side.CONCAVE, e
     elif pinion_cutter_hint.blade is not blade:
         raise DesignError.single("pinion_cutter_hint.blade", pinion_cutter_hint.blade.value, blade.value, "-",
                                  f"the pinion {side.value} side is cut by the {blade.value} blade")
-    settings0 = MachineSettings.from_blank(blank, Member.PINION, side, pinion_cutter_hint)
+    settings0 = (MachineSettings.from_blank(blank, Member.PINION, side, pinion_cutter_hint)
+                 if pinion_settings_hint is None else pinion_settings_hint)
     cutter, settings, u, info = fit_settings(pinion_cutter_hint, settings0, blank, side, target, target_nt, free)
     pinion_flank = generate_flank(cutter, settings, blank, Member.PINION, side)
     p1 = pinion_flank.evaluate(u, 0.0, curvature=False).points

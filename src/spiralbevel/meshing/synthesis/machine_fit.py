@@ -22,6 +22,10 @@ from ...generation import generate_flank
 from ...generation.meshing import Generator
 from ._relations import curvature_tensor, tangent_components
 
+import logging
+
+_log = logging.getLogger(__name__)
+
 __all__ = ["FREE_DEFAULT", "FREE_OFFSET", "FREE_MODIFIED_ROLL", "FREE_FIXED_BLADE", "fit_settings", "point_invariants"]
 
 FREE_OFFSET = ("point_radius", "blade_angle", "radial_setting", "cradle_angle", "ratio_of_roll", "blank_offset")
@@ -121,16 +125,44 @@ def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_D
     bad = np.full(7, 1e6)
     hand = flank0.hand
 
-    def fun(x):
-        try:
-            c, s = build(cutter0, settings0, free, x[:6])
-            inv, _ = point_invariants(Generator(c, s, hand), x[6])       # the flank's kernel, without the outline
-        except SpiralBevelError:
-            return bad.copy()
-        return (inv - target) * w
+    def invariants(x):
+        c, s = build(cutter0, settings0, free, x[:6])
+        inv, _ = point_invariants(Generator(c, s, hand), x[6])       # the flank's kernel, without the outline
+        return inv
+
+    def newton(goal, x_start):
+        def fun(x):
+            try:
+                return (invariants(x) - goal) * w
+            except SpiralBevelError:
+                return bad.copy()
+        return solve_batched(fun, x_start, tol=tol, max_iter=max_iter, max_step=step)
 
     step = np.array([_MAX_STEP[f] for f in free] + [1.0])
-    res = solve_batched(fun, x0, tol=tol, max_iter=max_iter, max_step=step)
+    res = newton(target, x0)
+    if not bool(res.converged):
+        # continuation: move the goal from the start's own invariants to the target in steps (halved on failure),
+        # each Newton solve starting from the previous solution
+        try:
+            inv0 = invariants(x0)
+        except SpiralBevelError:
+            inv0 = None
+        if inv0 is not None:
+            t, dt, x, tries = 0.0, 0.25, x0, 0
+            while t < 1.0 and tries < 40:
+                tries += 1
+                t1 = min(1.0, t + dt)
+                r = newton(inv0 + t1 * (target - inv0), x)
+                _log.debug('continuation t=%.4f ok=%s x=%s', t1, bool(r.converged), r.x)
+                if bool(r.converged):
+                    t, x, dt = t1, r.x, min(0.5, 2.0 * dt)
+                    res = r
+                else:
+                    dt *= 0.5
+                    if dt < 1e-3:
+                        break
+            if t < 1.0:
+                res.converged = np.asarray(False)
     if not bool(res.converged):
         raise ConvergenceError(f"pinion machine settings: Newton did not reach the synthesized geometry "
                                f"(free = {free}; scaled residual {float(res.residual):.3g})",

@@ -380,7 +380,8 @@ def multipoint_tca(result: MultiPointResult, *, n_positions: int = 61, pairs=(-1
     straight_blades : bool
         Generate both flanks with the straight blade continued down to the tip plane (edge radius 1e-4 mm) instead of
         the real edge radius: the surfaces of seed 001 Eq. (16), which uses the straight-edge part (a) only. The
-        flanks are identical above the fillet junctions; below them the contact is the idealized one of the paper.
+        flanks are identical above the fillet junctions; below them the contact is the idealized one of the paper,
+        whose surfaces have no edges (``flank_bounds=False`` of solve_tca unless given).
     """
     if result.law.kind == "linear":
         raise DesignError.single("interpolation", "linear", "'spline' or 'polynomial' for TCA of the whole cycle", "-",
@@ -390,6 +391,7 @@ def multipoint_tca(result: MultiPointResult, *, n_positions: int = 61, pairs=(-1
     if straight_blades:
         pin = _Surface(_sharp(pin.flank), pin.rotation, pin.reference_params)
         gear = _Surface(_sharp(gear.flank), gear.rotation, gear.reference_params)
+        kw.setdefault("flank_bounds", False)
     return solve_tca(pin, gear, result.synthesis.mean.kinematics, misalignment=misalignment, phi1_mean=0.0,
                      n_positions=n_positions, pairs=pairs, start=start, **kw)
 

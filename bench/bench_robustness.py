@@ -1,0 +1,112 @@
+"""Robustness of the face-milled design path: random plausible designs from basic data to a developed pair.
+
+Samples designs (pinion 9-40 teeth, ratio 1-6, shaft angle 60-120 deg, mean spiral angle 0-45 deg (> 0 in the design
+file: 1-45), outer module 1-12 mm, face width 0.15-0.3 Re, both hands, gear pitch angle below 85 deg, pressure angle 20 deg, cutter radius 0.8-1.1 R_m), and runs for each what
+``spiralbevel run`` does up to the TCA: the ISO blank, default cutters and solved basic settings for the four flanks,
+local synthesis of both pinion sides (the developed pair by default) and the TCA of both sides. A design counts as
+developed when every step succeeds and both TCA sides have contact at every position. Prints the fraction developed,
+the time per design, and every failure with its error message (a failure must be a clear ``SpiralBevelError``, never a
+traceback or NaN).
+
+Usage: ``python bench/bench_robustness.py [n_designs] [seed]`` (default 40 designs, seed 1).
+"""
+
+from __future__ import annotations
+
+import collections
+import math
+import sys
+import time
+
+import numpy as np
+
+from spiralbevel.errors import SpiralBevelError
+from spiralbevel.io.design_file import parse_design
+from spiralbevel.job import facemilled as fm
+from spiralbevel.job.blank import blank_from_design
+from spiralbevel.job.tca import run_pair_tca
+
+TEMPLATE = """
+title = "sample"
+[gear_set]
+pinion_teeth = {z1}
+gear_teeth = {z2}
+shaft_angle = {sigma:.3f}
+module = {m:.3f}
+face_width = {b:.3f}
+normal_pressure_angle = 20
+mean_spiral_angle = {beta:.3f}
+pinion_hand = "{hand}"
+cutter_radius = {rc:.2f}
+[flank]
+kind = "face-milled"
+"""
+
+
+def sample(rng):
+    """One plausible design as design-file text and a short label."""
+    while True:  # an external bevel pair: the gear's pitch angle below 85 deg (else a crown or internal gear)
+        z1 = int(rng.integers(9, 41))
+        z2 = int(round(z1 * rng.uniform(1.0, 6.0)))
+        sigma = rng.uniform(60.0, 120.0)
+        s = math.radians(sigma)
+        if math.degrees(math.atan2(math.sin(s), z1 / z2 + math.cos(s))) < 85.0:
+            break
+    beta = rng.uniform(1.0, 45.0)
+    m = rng.uniform(1.0, 12.0)
+    delta2 = math.atan2(math.sin(s), z1 / z2 + math.cos(s))
+    Re = m * z2 / (2.0 * math.sin(delta2))
+    b = rng.uniform(0.15, 0.3) * Re
+    hand = "RH" if rng.random() < 0.5 else "LH"
+    rc = rng.uniform(0.8, 1.1) * (Re - 0.5 * b)    # a cutter of the size of the mean cone distance, as in practice
+    label = f"{z1}/{z2} S={sigma:.1f} b={beta:.1f} m={m:.2f} F={b:.1f} rc={rc:.0f} {hand}"
+    return TEMPLATE.format(z1=z1, z2=z2, sigma=sigma, m=m, b=b, beta=beta, hand=hand, rc=rc), label
+
+
+def develop(text):
+    """None when the design is developed, else the failure message."""
+    spec = parse_design(text)
+    blank = blank_from_design(spec)
+    setups = fm.setup_flanks(spec, blank)
+    grids = {k: st.flank.grid(9, 5, curvature=False) for k, st in setups.items()}
+    _, section, _ = run_pair_tca(blank, setups, grids, n_positions=21)
+    for name in ("drive", "coast"):
+        sec = section[name]
+        if "error" in sec:
+            return f"TCA {name}: {sec['error']}"
+        if sec["no_contact_positions_rad"]:
+            return f"TCA {name}: no contact at {len(sec['no_contact_positions_rad'])} positions"
+        if not np.all(np.isfinite(sec["transmission_error_arcsec"])):
+            return f"TCA {name}: NaN transmission error"
+    return None
+
+
+def main(n=40, seed=1):
+    rng = np.random.default_rng(seed)
+    ok, reasons, crashes = 0, collections.Counter(), []
+    t0 = time.perf_counter()
+    for _ in range(n):
+        text, label = sample(rng)
+        try:
+            why = develop(text)
+        except SpiralBevelError as err:
+            why = f"{type(err).__name__}: {str(err).splitlines()[0][:160]}"
+        except Exception as err:  # noqa: BLE001 - a traceback is itself a finding of this bench
+            why = f"UNCAUGHT {type(err).__name__}: {err}"
+            crashes.append(label)
+        if why is None:
+            ok += 1
+        else:
+            reasons[why.split(":")[0] + ": " + why.split(":", 1)[-1][:110]] += 1
+            print(f"  not developed: {label}: {why[:200]}")
+    dt = time.perf_counter() - t0
+    print(f"developed {ok} of {n} designs ({100.0 * ok / n:.0f} %), {dt / n:.2f} s per design")
+    for why, k in reasons.most_common():
+        print(f"  {k:3d} x {why}")
+    if crashes:
+        print(f"uncaught exceptions: {len(crashes)}")
+
+
+if __name__ == "__main__":
+    args = [int(a) for a in sys.argv[1:]]
+    main(*args)
