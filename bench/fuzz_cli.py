@@ -309,6 +309,10 @@ def main(argv=None) -> int:
         finally:
             signal.setitimer(signal.ITIMER_PROF, 0)
             signal.setitimer(signal.ITIMER_REAL, 0)
+        if code in (130, 143):
+            # the CLI turned a SIGINT or SIGTERM sent to this driver into an exit code: stop the campaign
+            print(f"interrupted (exit {code}) after {k} inputs", flush=True)
+            return 2
         dt = time.perf_counter() - t0
         slowest_cpu = max(slowest_cpu, time.process_time() - c0)
         slowest = max(slowest, (dt, argv_k[:2]), key=lambda t: t[0])
