@@ -1,14 +1,27 @@
 """Command-line interface ``spiralbevel``: parses, calls public functions, prints. Computes nothing itself.
 
 Bad input exits with code 2 and lists every problem (dotted field path, value, allowed range, unit), no traceback.
+
+Exit codes (also in the README):
+
+===  =====================================================================================================
+0    success
+1    a computation failed (solver did not converge, no contact in a primary analysis); nothing was written
+2    bad input: design file, option, measured CSV, or an output path that is refused; nothing was written
+3    completed with warnings: the output was written, but a secondary analysis failed (its report entry says why)
+4    internal error (a bug: please report it); nothing was written
+130  interrupted by SIGINT (Ctrl-C); 143: terminated by SIGTERM. A previous output is left as it was
+===  =====================================================================================================
 """
 
 from __future__ import annotations
 
 import functools
 import json
-import warnings
+import signal
 import sys
+import threading
+import warnings
 from pathlib import Path
 from typing import Optional
 
@@ -19,25 +32,34 @@ from rich.table import Table
 from .errors import (ConvergenceError, DesignError, MissingDependencyError, NoContactError, SpiralBevelError,
                      SpiralBevelWarning)
 
+#: exit codes (module docstring, README "Exit codes")
+EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_WARNINGS, EXIT_INTERNAL = 0, 1, 2, 3, 4
+EXIT_SIGINT, EXIT_SIGTERM = 128 + int(signal.SIGINT), 128 + int(getattr(signal, "SIGTERM", 15))
+
+
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM, raised like Ctrl-C so that every ``finally`` and the output swap's clean-up run."""
+
 app = typer.Typer(
     add_completion=False,
     no_args_is_help=True,
     help="spiralbevel: design, manufacture and contact analysis of spiral bevel gears.",
 )
 console = Console()
-err_console = Console(stderr=True)
+err_console = Console(stderr=True, soft_wrap=True)
 
 DesignArg = typer.Argument(None, help="Design file (TOML), or the name of a bundled example (see "
                                        "'spiralbevel examples'). Default: the bundled aviation 23/65 log-spiral set.")
 
 
 def _load(design):
-    """A design file path, or the name of a bundled example."""
+    """A design file path, or the bare name of a bundled example (``aviation_23x65_cmc``, with or without
+    ``.toml``, no directory part) when no such file exists. A path with a directory that does not exist is an error."""
     from .io.design_file import bundled_designs, load_design
 
-    if design is not None and not Path(design).is_file():
+    if design is not None and not Path(design).exists() and len(Path(design).parts) == 1:
         names = bundled_designs()
-        stem = Path(design).name.removesuffix(".toml")
+        stem = str(design).removesuffix(".toml")
         if stem in names:
             return load_design(names[stem])
     return load_design(design)
@@ -51,12 +73,25 @@ def _guard(fn):
         err_console.print("[bold red]error:[/] ", end="")
         err_console.print(text, markup=False, highlight=False)
 
+    def on_sigterm(signum, frame):
+        raise _Terminated()
+
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
+        main = threading.current_thread() is threading.main_thread() and hasattr(signal, "SIGTERM")
+        previous = signal.signal(signal.SIGTERM, on_sigterm) if main else None
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", SpiralBevelWarning)
             try:
                 return fn(*args, **kwargs)
+            except typer.Exit:
+                raise
+            except _Terminated:
+                error("terminated (SIGTERM); nothing was written and any previous output is as it was")
+                raise typer.Exit(code=EXIT_SIGTERM) from None
+            except KeyboardInterrupt:
+                error("interrupted; nothing was written and any previous output is as it was")
+                raise typer.Exit(code=EXIT_SIGINT) from None
             except DesignError as err:
                 error(f"{len(err.problems)} problem(s) in the input")
                 for p in err.problems:
@@ -69,9 +104,15 @@ def _guard(fn):
                 error(str(err))
                 raise typer.Exit(code=1) from None
             except OSError as err:
-                error(f"{err.strerror or err}: {err.filename}" if getattr(err, "filename", None) else str(err))
+                error(f"{err.filename}: {err.strerror or err}" if getattr(err, "filename", None) else str(err))
                 raise typer.Exit(code=2) from None
+            except Exception as err:  # noqa: BLE001 - the last line of defence: a message, never a traceback
+                error(f"internal error ({type(err).__name__}: {str(err)[:300]}); this is a bug, please report it "
+                      "with the design file")
+                raise typer.Exit(code=EXIT_INTERNAL) from None
             finally:
+                if main and previous is not None:
+                    signal.signal(signal.SIGTERM, previous)
                 seen = set()
                 for w in caught:
                     text = str(w.message)
@@ -90,7 +131,10 @@ def run(
     out: Path = typer.Option(Path("out"), "-o", "--out", help="Output directory (written whole or not at all)."),
     quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar."),
 ):
-    """Compute everything the design asks for and write report.json, plots, STL, STEP and tool paths."""
+    """Compute everything the design asks for and write report.json, plots, STL, STEP and tool paths.
+
+    OUT must be new, empty, or a previous spiralbevel output (it holds the manifest .spiralbevel-output.json); any
+    other directory is refused (exit 2). OUT is replaced whole, or not at all."""
     spec = _load(design)
     from .job import run_design
 
@@ -98,6 +142,10 @@ def run(
     console.print(f"[green]wrote[/] {out}/ ({len(summary.files)} files)")
     for line in summary.highlights:
         console.print(f"  {line}", markup=False, highlight=False)
+    if summary.partial.failed:
+        err_console.print(f"[yellow]completed with warnings:[/] {len(summary.partial.failed)} analysis/analyses "
+                          "failed (see 'failed_analyses' in report.json)")
+        raise typer.Exit(code=EXIT_WARNINGS)
 
 
 @app.command()
@@ -111,6 +159,10 @@ def blank(
     from .io.dimension_sheet import dimension_sheet_json, dimension_sheet_rows
     from .job.blank import blank_from_design
 
+    if output is not None:
+        from .io.atomic import check_output_file
+
+        check_output_file(output)
     spec = _load(design)
     result = blank_from_design(spec)
     if as_json or output is not None:
@@ -227,21 +279,6 @@ def correct(
                       f"{', '.join(res.not_identifiable)}")
 
 
-def _values(text: Optional[str]) -> Optional[list]:
-    """'-0.1,0,0.1' or 'start:stop:count' -> list of floats."""
-    if text is None:
-        return None
-    try:
-        if ":" in text:
-            a, b, n = text.split(":")
-            import numpy as np
-
-            return [float(v) for v in np.linspace(float(a), float(b), int(n))]
-        return [float(v) for v in text.split(",")]
-    except ValueError as err:
-        raise DesignError.single("sweep values", text, "'v1,v2,...' or 'start:stop:count'", "") from err
-
-
 @app.command()
 @_guard
 def sweep(
@@ -256,13 +293,18 @@ def sweep(
     output: Optional[Path] = typer.Option(None, "--output", help="Write the records as JSON to this file."),
 ):
     """TCA over a grid of misalignments (TE level and contact shift), in parallel with dask (extra 'dist')."""
-    from .job.sweep import misalignment_sweep
+    from .job.sweep import check_scheduler, misalignment_sweep, parse_values
 
-    spec = _load(design)
-    grid = {k: v for k, v in (("pinion_axial", _values(pinion_axial)), ("gear_axial", _values(gear_axial)),
-                              ("offset", _values(offset)), ("shaft_angle", _values(shaft_angle))) if v is not None}
+    texts = {"pinion_axial": pinion_axial, "gear_axial": gear_axial, "offset": offset, "shaft_angle": shaft_angle}
+    grid = {k: parse_values(k, v) for k, v in texts.items() if v is not None}
     if side not in ("drive", "coast"):
-        raise DesignError.single("side", side, "'drive' or 'coast'", "-")
+        raise DesignError.single("--side", side, "'drive' or 'coast'", "-")
+    check_scheduler(scheduler)
+    if output is not None:
+        from .io.atomic import check_output_file
+
+        check_output_file(output)
+    spec = _load(design)
     records = misalignment_sweep(spec, grid, side=side, scheduler=scheduler)
     table = Table(title=f"Misalignment sweep, {side} side ({len(records)} TCA runs)")
     for col in ("dA1 mm", "dA2 mm", "dE mm", "dgamma deg", "TE p-p arcsec", "contact R mm", "contact h mm", "edge"):
@@ -295,6 +337,33 @@ def check(design: Optional[Path] = DesignArg):
     spec = _load(design)
     check_design(spec)
     console.print(f"[green]ok[/] {spec.title}")
+
+
+cache_app = typer.Typer(no_args_is_help=True, help="The on-disk FE compliance cache of the loaded TCA "
+                                                      "($SPIRALBEVEL_CACHE, default ~/.cache/spiralbevel).")
+app.add_typer(cache_app, name="cache")
+
+
+@cache_app.command("info")
+@_guard
+def cache_info_cmd():
+    """Where the cache is, how many entries and bytes it holds, and its size cap ($SPIRALBEVEL_CACHE_MAX_MB)."""
+    from .meshing.ltca.fe_cache import cache_info
+
+    info = cache_info()
+    console.print(f"cache: {info['path']}", markup=False, highlight=False)
+    console.print(f"  {info['entries']} entries, {info['bytes'] / 2**20:.1f} MB (cap {info['max_bytes'] / 2**20:.0f} "
+                  "MB; the least recently used entries are removed beyond it)", markup=False, highlight=False)
+
+
+@cache_app.command("clear")
+@_guard
+def cache_clear_cmd():
+    """Delete every cache entry (other files in the directory are left alone)."""
+    from .meshing.ltca.fe_cache import cache_info, clear_cache
+
+    n = clear_cache()
+    console.print(f"removed {n} entries from {cache_info()['path']}", markup=False, highlight=False)
 
 
 @app.command()

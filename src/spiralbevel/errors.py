@@ -20,6 +20,8 @@ __all__ = [
     "MissingDependencyError",
     "SpiralBevelWarning",
     "DesignWarning",
+    "PartialResultWarning",
+    "CacheWarning",
 ]
 
 
@@ -136,3 +138,11 @@ class SpiralBevelWarning(UserWarning):
 
 class DesignWarning(SpiralBevelWarning):
     """A design is possible but outside recommended practice (face width too large, small top land, ...)."""
+
+
+class PartialResultWarning(SpiralBevelWarning):
+    """A secondary analysis failed; its report entry holds the reason and the rest of the report was written."""
+
+
+class CacheWarning(SpiralBevelWarning):
+    """The on-disk cache could not be read or written; the result was computed instead (the run goes on)."""

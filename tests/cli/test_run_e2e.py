@@ -88,10 +88,12 @@ def test_failed_run_leaves_previous_output_untouched(tmp_path):
     out = tmp_path / "out"
     out.mkdir()
     (out / "marker.txt").write_text("previous run")
+    (out / ".spiralbevel-output.json").write_text("{}")      # a previous spiralbevel output (its manifest)
     result = runner.invoke(app, ["run", str(f), "-o", str(out), "-q"])
     assert result.exit_code == 2, result.output
     assert "base cone" in result.output and "Traceback" not in result.output
-    assert sorted(p.name for p in out.iterdir()) == ["marker.txt"]
+    assert sorted(p.name for p in out.iterdir()) == [".spiralbevel-output.json", "marker.txt"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d.toml", "out"]
 
 
 def test_blank_command_table_and_json(tmp_path):

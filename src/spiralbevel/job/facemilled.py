@@ -226,9 +226,48 @@ def _basic_setups(spec, blank):
                     source = ("basic settings solved for the design pressure and spiral angles, root on the root "
                               "cone" + ("" if fs.cutter is None else " (given cutter: spiral angle only)"))
             except DesignError as err:
+                if fs.machine is not None and "equation of meshing has no solution" in str(err):
+                    raise _misplaced_cutter(err, key, fs, blank, m, s, cutter, spec) from err
                 raise _in_design_file(err, key, fs) from err
             out[(m, s)] = FlankSetup(m, s, cutter, settings, flank, source, fit)
     return out
+
+
+#: given settings against the basic settings from the blank: an angle this far off (deg), or a length this far off
+#: as a fraction of the mean cone distance, is named as the likely reason why the cutter misses the blank
+_CULPRIT_ANGLE_DEG, _CULPRIT_LENGTH = 10.0, 0.25
+
+
+def _misplaced_cutter(err, key, fs, blank, m, s, cutter, spec):
+    """The cutter of given settings misses the blank: name the setting farthest from the blank's basic settings
+    (machine root angle against the root angle, radial setting, sliding base, machine centre to back, blank offset),
+    or all of them when none stands out."""
+    from ..errors import GeometryError
+    from ..machine.settings import MachineSettings
+
+    ms = fs.machine
+    reason = "the cutter does not reach the blank (the equation of meshing has no solution)"
+    try:
+        basic = MachineSettings.from_blank(blank, m, s, cutter, roll=spec.face_milling.roll)
+    except DesignError:
+        basic = None
+    worst, score = None, 1.0
+    if basic is not None:
+        candidates = [("machine_root_angle", ms.machine_root_angle, math.degrees(basic.machine_root_angle), "deg",
+                       _CULPRIT_ANGLE_DEG)]
+        for name in ("radial_setting", "sliding_base", "machine_centre_to_back", "blank_offset"):
+            candidates.append((name, getattr(ms, name), getattr(basic, name), "mm", _CULPRIT_LENGTH * blank.Rm))
+        for name, given, ref, unit, scale in candidates:
+            if abs(given - ref) / scale > score:
+                worst, score = (name, given, ref, unit, scale), abs(given - ref) / scale
+    if worst is None:
+        names = "radial_setting, cradle_angle, machine_root_angle, sliding_base, machine_centre_to_back, blank_offset"
+        return GeometryError.single(f"face_milling.{key}.machine ({names})", "(section)",
+                                    "settings that place the cutter at the blank", "", reason)
+    name, given, ref, unit, scale = worst
+    return GeometryError.single(f"face_milling.{key}.machine.{name}", round(given, 6),
+                                f"|value - {ref:.4f}| <= {scale:.4g}", unit,
+                                f"{ref:.4f} {unit} is the basic setting from the blank; {reason}")
 
 
 def _in_design_file(err, key, fs):

@@ -78,6 +78,8 @@ def run_ltca_job(spec, blank, setups):
     res = model.run(T)
     te_l, te_u = np.asarray(res.te_loaded), np.asarray(res.te_unloaded)
     fin_l, fin_u = np.isfinite(te_l), np.isfinite(te_u)
+    if not np.any(fin_l) or not np.any(fin_u):
+        raise NoContactError(f"loaded TCA, {lt.side} side: no contact at any of the {lt.positions} positions")
     ext = te_l[fin_l][np.argmax(np.abs(te_l[fin_l]))]
     section = {
         "side": lt.side, "torque_Nm": T / 1000.0, "torque_for_approach_Nm": T_app / 1000.0,

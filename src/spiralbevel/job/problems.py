@@ -11,12 +11,15 @@ import re
 
 from ..errors import DesignError, Problem
 
-_NUM = re.compile(r"[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
+# a number standing alone (not the digit of a name such as "k1" or "delta2"), and "pi" or "pi/2" as whole words only
+_NUM = re.compile(r"(?<![\w.])[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?(?![\w.])")
+_PI = re.compile(r"\bpi(/2)?\b")
 
 
 def _deg_text(text: str) -> str:
-    """Numbers in an allowed-range text, read as rad, rewritten in degrees ("pi/2" too)."""
-    text = text.replace("pi/2", "\x00").replace("pi", "\x01")
+    """Numbers in an allowed-range text, read as rad, rewritten in degrees ("pi/2" and "pi" as words too; "pitch
+    angle" stays as it is)."""
+    text = _PI.sub(lambda m: "\x00" if m.group(1) else "\x01", text)
     text = _NUM.sub(lambda m: f"{math.degrees(float(m.group())):.6g}", text)
     return text.replace("\x00", "90").replace("\x01", "180")
 
@@ -45,3 +48,22 @@ def restated(err: DesignError, paths: dict, default: str | None = None) -> Desig
             unit = "deg"
         out.append(Problem(new, value, allowed, unit, p.reason))
     return type(err)(out)
+
+
+def with_design_keys(err: DesignError, section: str, context: str = "") -> DesignError:
+    """A DesignError whose every problem names a design-file key: a field that is not already a dotted path into the
+    design file (``grid(face station)``, ``locate(axial, radius)``: names of the computational layers) is shown as
+    ``section (field, context)``, ``section`` being the design-file section that controls it."""
+    from ..io.design_schema import DesignFile
+
+    heads = set(DesignFile.model_fields) | {"design file", "-o/--out"}
+    out, changed = [], False
+    for p in err.problems:
+        head = p.field.split(".", 1)[0].split(" ", 1)[0].split(":", 1)[0]
+        if p.field and head not in heads and not p.field.startswith("--"):
+            extra = f", {context}" if context else ""
+            out.append(Problem(f"{section} ({p.field}{extra})", p.value, p.allowed, p.unit, p.reason))
+            changed = True
+        else:
+            out.append(p)
+    return type(err)(out) if changed else err

@@ -13,6 +13,7 @@ class Steps:
         self.enabled = enabled
         self._progress = None
         self._task = None
+        self.current = "starting"
 
     def __enter__(self):
         if self.enabled:
@@ -32,6 +33,7 @@ class Steps:
     @contextmanager
     def step(self, description: str):
         """Run one step, labelled ``description``."""
+        self.current = description
         if self._progress is not None:
             self._progress.update(self._task, description=description)
         yield

@@ -9,6 +9,9 @@ from pathlib import Path
 from .. import __version__
 from ..io.design_schema import DesignFile
 from .blank import blank_from_design, require_no_offset
+from ..errors import DesignError
+from .partial import PartialLog
+from .problems import with_design_keys
 from .rating import rating_report
 from .progress import Steps
 
@@ -26,29 +29,48 @@ class RunSummary:
         One-line results for the terminal.
     report : dict
         The content of report.json.
+    partial : PartialLog
+        Secondary analyses that failed (each has a report entry with its reason); non-empty means "completed with
+        warnings".
     """
 
     out: Path
     files: list = field(default_factory=list)
     highlights: list = field(default_factory=list)
     report: dict = field(default_factory=dict)
+    partial: PartialLog = field(default_factory=PartialLog)
 
 
 def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
     """Compute everything ``spec`` asks for and write it to the directory ``out``.
 
     The directory is built aside and swapped in only when every file was written (``io.atomic.atomic_directory``):
-    a failure leaves any previous ``out`` untouched and no partial output.
-    """
-    from ..io.atomic import atomic_directory
-    from ..io.dimension_sheet import dimension_sheet_json
-    from ..io.report import write_report
+    a failure leaves any previous ``out`` untouched and no partial output. ``out`` must be new, empty, or a previous
+    spiralbevel output (marked by the manifest ``io.atomic.OUTPUT_MARKER``); any other existing directory is refused
+    with :class:`~spiralbevel.io.atomic.ForeignDirectoryError` before any computation.
 
+    A failing secondary analysis (conjugacy check, TCA of one side, loaded TCA, a misalignment case) does not stop the
+    run: its report entry says ``"status": "failed"`` with the reason, and ``summary.partial`` lists it.
+    """
     out = Path(out)
     summary = RunSummary(out=out)
     kind = spec.flank.kind
     n_steps = 2 + (_logspiral_steps(spec) if kind == "log-spiral" else _facemilled_steps(spec))
-    with Steps(n_steps, progress) as steps, atomic_directory(out) as tmp:
+    manifest = {"written_by": "spiralbevel", "spiralbevel_version": __version__, "title": spec.title}
+    section = "gear_set" if kind == "log-spiral" else "face_milling"
+    steps = Steps(n_steps, progress)
+    try:
+        return _run(spec, out, summary, kind, steps, manifest)
+    except DesignError as err:
+        raise with_design_keys(err, section, f"in the step '{steps.current}'") from err
+
+
+def _run(spec, out, summary, kind, steps, manifest):
+    from ..io.atomic import OUTPUT_MARKER, atomic_directory
+    from ..io.dimension_sheet import dimension_sheet_json
+    from ..io.report import write_report
+
+    with atomic_directory(out, marker=OUTPUT_MARKER, manifest=manifest) as tmp, steps:
         tmp = Path(tmp)
         with steps.step("blank geometry (ISO 23509)"):
             blank = blank_from_design(spec)
@@ -75,6 +97,7 @@ def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
         with steps.step("report.json"):
             summary.files.append("report.json")
             report["files"] = sorted(summary.files)
+            report["failed_analyses"] = [{"analysis": a, "reason": r} for a, r in summary.partial.failed]
             write_report(tmp / "report.json", report)
         summary.report = report
     return summary

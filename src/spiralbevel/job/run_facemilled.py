@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..conventions import Member, Side
 from . import facemilled as fm
 from . import outputs
+from .partial import attempt, mark_failed
 
 
 def run_facemilled(spec, blank, out, steps, report, summary):
@@ -31,11 +32,20 @@ def run_facemilled(spec, blank, out, steps, report, summary):
     with steps.step("tooth contact analysis"):
         from .tca import run_pair_tca
 
-        from .tca import misalignment_sensitivity
+        from .tca import SENSITIVITY, misalignment_sensitivity
 
         n_pos = spec.tca.positions
         tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids, n_positions=n_pos)
-        report["tca"]["misalignment_sensitivity"] = misalignment_sensitivity(blank, setups, "drive", n_positions=n_pos)
+        for name in ("drive", "coast"):
+            mark_failed(summary.partial, report["tca"][name], f"TCA, {name} side")
+        sens, failed = attempt(summary.partial, "misalignment sensitivity", misalignment_sensitivity, blank, setups,
+                               "drive", n_positions=n_pos)
+        report["tca"]["misalignment_sensitivity"] = failed or sens
+        if failed is None:
+            mark_failed(summary.partial, sens, "misalignment sensitivity, aligned")
+            for case in SENSITIVITY:
+                if isinstance(sens.get(case[0]), dict):
+                    mark_failed(summary.partial, sens[case[0]], f"misalignment sensitivity, {case[0]} case")
         if cmc:
             from ..meshing.synthesis.cmc_design import te_summary
 
@@ -59,10 +69,13 @@ def run_facemilled(spec, blank, out, steps, report, summary):
         with steps.step("loaded TCA (FE compliance, load sharing)"):
             from .ltca import run_ltca_job
 
-            ltca_result, report["ltca"] = run_ltca_job(spec, blank, setups)
+            out_lt, failed = attempt(summary.partial, f"loaded TCA, {spec.ltca.side} side", run_ltca_job, spec,
+                                     blank, setups)
+            ltca_result, report["ltca"] = out_lt if failed is None else (None, failed)
             lt = report["ltca"]
-            if "error" in lt:
-                summary.highlights.append(lt["error"])
+            mark_failed(summary.partial, lt, f"loaded TCA, {spec.ltca.side} side")
+            if lt.get("status") == "failed":
+                summary.highlights.append(f"LTCA {spec.ltca.side}: failed ({lt['reason']})")
             else:
                 summary.highlights.append(
                     f"LTCA {lt['side']}: torque {lt['torque_Nm']:.2f} N m (approach 0.00635 mm at "

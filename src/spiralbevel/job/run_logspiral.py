@@ -9,6 +9,7 @@ import numpy as np
 from ..conventions import Member
 from . import logspiral as ls
 from . import outputs
+from .partial import attempt, mark_failed
 
 
 def run_logspiral(spec, blank, out, steps, report, summary):
@@ -23,11 +24,15 @@ def run_logspiral(spec, blank, out, steps, report, summary):
     with steps.step("conjugacy check (envelope solver)"):
         from .conjugacy import conjugacy_report
 
-        report["logspiral"]["conjugacy"] = conjugacy_report(pair)
+        cj, failed = attempt(summary.partial, "conjugacy check (envelope solver)", conjugacy_report, pair)
+        report["logspiral"]["conjugacy"] = failed or cj
     with steps.step("tooth contact analysis"):
         from .logspiral_tca import logspiral_tca
 
-        _, report["logspiral"]["tca"] = logspiral_tca(pair)
+        tca, failed = attempt(summary.partial, "log-spiral tooth contact analysis", logspiral_tca, pair)
+        report["logspiral"]["tca"] = failed or tca[1]
+        for name, sec in ({} if failed else tca[1]).items():
+            mark_failed(summary.partial, sec, f"log-spiral TCA, {name} side")
     crowning = reliefs = None
     if spec.crowning is not None or o.draft and spec.manufacturing.forging_relief:
         from . import logspiral_production as lp
@@ -78,8 +83,9 @@ def run_logspiral(spec, blank, out, steps, report, summary):
         summary.highlights.append(f"forging relief: draft {spec.manufacturing.draft_angle:g} deg passes on every "
                                   f"flank: {ok}")
     cj = report["logspiral"]["conjugacy"]
-    summary.highlights.append("conjugacy (envelope of the pinion vs the gear flank): " + ", ".join(
-        f"{s} {v.get('max_distance_mm', float('nan')):.2e} mm" for s, v in cj.items()))
+    summary.highlights.append("conjugacy (envelope of the pinion vs the gear flank): " + (
+        f"failed ({cj['reason']})" if cj.get("status") == "failed" else ", ".join(
+            f"{s} {v.get('max_distance_mm', float('nan')):.2e} mm" for s, v in cj.items())))
     k = report["logspiral"]["members"]
     summary.highlights.append(
         f"log-spiral: base cones {k['pinion']['base_cone_angle_deg']:.4f} / {k['gear']['base_cone_angle_deg']:.4f} deg,"

@@ -20,6 +20,77 @@ import numpy as np
 from ..errors import ConvergenceError, DesignError, MissingDependencyError, NoContactError
 
 AXES = ("pinion_axial", "gear_axial", "offset", "shaft_angle")   # mm, mm, mm, deg (design units)
+#: largest misalignment of each axis, design units: assembly errors of a bevel pair are tenths of a millimetre and
+#: hundredths of a degree; beyond these the TCA of the aligned design's flanks says nothing useful
+LIMITS = {"pinion_axial": 2.0, "gear_axial": 2.0, "offset": 2.0, "shaft_angle": 1.0}
+UNITS = {"pinion_axial": "mm", "gear_axial": "mm", "offset": "mm", "shaft_angle": "deg"}
+OPTIONS = {"pinion_axial": "--pinion-axial", "gear_axial": "--gear-axial", "offset": "--offset",
+           "shaft_angle": "--shaft-angle"}
+#: most values of one axis and most TCA runs of a sweep
+MAX_VALUES, MAX_POINTS = 1000, 10000
+_SCHEMES = ("tcp", "tls", "ws", "wss", "inproc", "ucx")
+
+
+def parse_values(axis: str, text: str) -> list:
+    """Values of one sweep axis from ``'v1,v2,...'`` or ``'start:stop:count'``, checked.
+
+    Parameters
+    ----------
+    axis : str
+        One of :data:`AXES`.
+    text : str
+        The option's text.
+
+    Returns
+    -------
+    list of float
+        In design units (mm, or deg for ``shaft_angle``).
+
+    Raises
+    ------
+    DesignError
+        Naming the option, the value, the allowed range and the unit: unreadable or non-finite numbers, values beyond
+        :data:`LIMITS`, more than :data:`MAX_VALUES` values.
+    """
+    opt, unit, lim = OPTIONS[axis], UNITS[axis], LIMITS[axis]
+    forms = "'v1,v2,...' or 'start:stop:count'"
+    if len(text) > 20000:
+        raise DesignError.single(opt, text[:40] + "...", forms, unit, "too long")
+    try:
+        if ":" in text:
+            a, b, n = text.split(":")
+            count = int(n)
+            if not 1 <= count <= MAX_VALUES:
+                raise DesignError.single(opt, text, f"1 <= count <= {MAX_VALUES}", "-", "count of 'start:stop:count'")
+            lo, hi = float(a), float(b)
+            values = [lo] if count == 1 else [lo + (hi - lo) * k / (count - 1) for k in range(count)]
+        else:
+            values = [float(v) for v in text.split(",")]
+    except ValueError as err:
+        raise DesignError.single(opt, text, forms, "-", "sweep values") from err
+    if len(values) > MAX_VALUES:
+        raise DesignError.single(opt, f"{len(values)} values", f"at most {MAX_VALUES} values", "-")
+    for v in values:
+        if not math.isfinite(v) or abs(v) > lim:
+            raise DesignError.single(opt, v, f"finite, -{lim} <= value <= {lim}", unit, "sweep values")
+    return values
+
+
+def check_scheduler(address) -> None:
+    """``None``, ``'sequential'`` or a dask scheduler address ``scheme://host:port`` (scheme tcp, tls, ws, wss;
+    ``inproc://`` and ``ucx://`` addresses as dask writes them); else a :class:`DesignError` naming ``--scheduler``."""
+    if address is None or address == "sequential":
+        return
+    allowed = "'sequential' or a dask scheduler address such as tcp://127.0.0.1:8786"
+    scheme, sep, rest = str(address).partition("://")
+    if not sep or scheme not in _SCHEMES or not rest or len(address) > 300 or any(c.isspace() for c in address):
+        raise DesignError.single("--scheduler", address, allowed, "-")
+    if scheme in ("inproc", "ucx"):
+        return
+    host, colon, port = rest.rstrip("/").rpartition(":")
+    if not colon or not host or not port.isdigit() or not 1 <= int(port) <= 65535:
+        raise DesignError.single("--scheduler", address, allowed, "-", "the address needs a host and a port "
+                                 "1-65535")
 
 
 @functools.lru_cache(maxsize=4)
@@ -124,7 +195,22 @@ def misalignment_sweep(spec, grid: dict, side: str = "drive", scheduler: str | N
     bad = [k for k in grid if k not in AXES]
     if bad:
         raise DesignError.single("sweep axis", bad[0], ", ".join(AXES), "-")
-    axes = [list(map(float, grid.get(k, [0.0]))) for k in AXES]
+    if side not in ("drive", "coast"):
+        raise DesignError.single("--side", side, "'drive' or 'coast'", "-")
+    check_scheduler(scheduler)
+    axes = []
+    for k in AXES:
+        values = [float(v) for v in grid.get(k, [0.0])]
+        if not values or len(values) > MAX_VALUES:
+            raise DesignError.single(OPTIONS[k], f"{len(values)} values", f"1 to {MAX_VALUES} values", "-")
+        for v in values:
+            if not math.isfinite(v) or abs(v) > LIMITS[k]:
+                raise DesignError.single(OPTIONS[k], v, f"finite, -{LIMITS[k]} <= value <= {LIMITS[k]}", UNITS[k])
+        axes.append(values)
+    n_points = math.prod(len(a) for a in axes)
+    if n_points > MAX_POINTS:
+        raise DesignError.single("sweep grid", f"{n_points} TCA runs", f"at most {MAX_POINTS} runs", "-",
+                                 "the product of the value counts of the four axes")
     points = list(itertools.product(*axes))
     spec_json = spec.model_dump_json()
     if scheduler == "sequential":
@@ -145,7 +231,7 @@ def misalignment_sweep(spec, grid: dict, side: str = "drive", scheduler: str | N
         from distributed import Client
     except ImportError as err:
         raise MissingDependencyError("dask[distributed]", "dist", "A distributed sweep") from err
-    with Client(scheduler) as client:
+    with Client(scheduler, timeout=20) as client:
         n_workers = sum(client.nthreads().values())
         tasks = [dask.delayed(sweep_batch)(spec_json, side, b, n_positions) for b in _batches(points, n_workers)]
         parts = dask.compute(*tasks, scheduler=client)

@@ -15,32 +15,26 @@ mesh-dependent smear of the point-load singularity; nothing is subtracted from i
 half-space term of :mod:`~spiralbevel.meshing.ltca.halfspace` for points of the same tooth pair (the FE near field
 then over-counts a little: a conservative, stiffness-lowering choice, documented as such).
 
-The FE result is cached on disk (``np.savez``) keyed by a SHA-256 hash of mesh, loaded flanks, material and element
-order, so a second run (another torque, other mesh positions) skips the factorization.
+The FE result is cached on disk (:mod:`~spiralbevel.meshing.ltca.fe_cache`: keyed by mesh, loaded flanks, material,
+element order and the code version, checked on load), so a second run (another torque, other mesh positions) skips the
+factorization.
 """
 
 from __future__ import annotations
 
-import hashlib
 import logging
-import os
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
 from ...errors import DesignError, MissingDependencyError
+from .fe_cache import cache_key, default_cache_dir, load_matrix, store_matrix
 from .halfspace import STEEL, Material
 from .mesher import SegmentMesh, grid_normals
 
 __all__ = ["ToothCompliance", "tooth_compliance", "default_cache_dir"]
 
 log = logging.getLogger(__name__)
-
-
-def default_cache_dir() -> Path:
-    """``$SPIRALBEVEL_CACHE`` or ``~/.cache/spiralbevel``."""
-    return Path(os.environ.get("SPIRALBEVEL_CACHE", Path.home() / ".cache" / "spiralbevel"))
 
 
 @dataclass(frozen=True)
@@ -113,13 +107,8 @@ class ToothCompliance:
 
 
 def _cache_key(mesh: SegmentMesh, side, material, order):
-    h = hashlib.sha256()
-    for arr in (mesh.vertices, mesh.tets, mesh.fixed):
-        h.update(np.ascontiguousarray(arr).tobytes())
-    for k in mesh.teeth:
-        h.update(np.ascontiguousarray(mesh.flank_nodes[(k, side)]).tobytes())
-    h.update(f"{side}|{material.youngs_modulus!r}|{material.poisson_ratio!r}|{order}|v1".encode())
-    return h.hexdigest()[:24]
+    arrays = [mesh.vertices, mesh.tets, mesh.fixed] + [mesh.flank_nodes[(k, side)] for k in mesh.teeth]
+    return cache_key(arrays, f"{side}|{material.youngs_modulus!r}|{material.poisson_ratio!r}|{order}")
 
 
 def stiffness_matrix(basis_scalar, element_dofs, n_dofs, lam, mu):
@@ -251,24 +240,15 @@ def tooth_compliance(mesh: SegmentMesh, side: str, material: Material = STEEL, o
     grids = {k: mesh.vertices[mesh.flank_nodes[(k, side)]] for k in teeth}
     normals = {k: grid_normals(g) for k, g in grids.items()}
     key = _cache_key(mesh, side, material, order)
-    path = Path(cache_dir or default_cache_dir()) / f"ltca_fe_{key}.npz"
-    if use_cache and path.exists():
-        try:
-            with np.load(path) as data:
-                G, asym = data["G"], float(data["asymmetry"])
-            log.info("FE tooth compliance read from %s", path)
-            return ToothCompliance(grids, normals, G, teeth, side, key, asym)
-        except (OSError, KeyError, ValueError):
-            log.warning("unreadable FE cache %s; recomputing", path)
     nodes = np.concatenate([mesh.flank_nodes[(k, side)].ravel() for k in teeth])
+    cached = load_matrix(cache_dir, key, len(nodes)) if use_cache else None
+    if cached is not None:
+        return ToothCompliance(grids, normals, cached[0], teeth, side, key, cached[1])
     nrm = np.concatenate([normals[k].reshape(-1, 3) for k in teeth])
     G, ndof = _solve_fe(mesh, nodes, nrm, material, order)
     asym = float(np.max(np.abs(G - G.T)) / np.max(np.abs(G)))
     G = 0.5 * (G + G.T)
     log.info("FE tooth compliance: %d free dofs, %d load nodes", ndof, len(nodes))
     if use_cache:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(".tmp.npz")
-        np.savez(tmp, G=G, asymmetry=asym)
-        os.replace(tmp, path)
+        store_matrix(cache_dir, key, G, asym)
     return ToothCompliance(grids, normals, G, teeth, side, key, asym)
