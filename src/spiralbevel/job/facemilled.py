@@ -80,6 +80,37 @@ DEFAULT_SYNTHESIS = dict(sides=("drive", "coast"), path_direction=0.0, semi_majo
                          approach_fraction=0.00635 / 37.0, te_magnitude=8.0)
 
 
+#: path directions (deg, on the gear from the profile direction) the default synthesis tries in turn, per side, until
+#: the TCA keeps the bearing inside both flanks: a path across the profile suits most designs; when the mean point is
+#: near a tooth top (a small gear addendum), a path turned toward the lengthwise direction keeps the contact off it
+DEFAULT_PATH_DIRECTIONS = (0.0, -20.0, 20.0, -40.0, 40.0, -55.0, 55.0)
+
+#: positions of the TCA that checks the default bearing over one mesh cycle
+_CHECK_POSITIONS = 41   # as the job's TCA (run_pair_tca)
+
+
+def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK_POSITIONS) -> int:
+    """Number of TCA positions over one mesh cycle at which the pair's contact is not inside both flanks.
+
+    Counts positions with no real-flank contact and positions in edge contact (the contact point beyond a flank
+    boundary: tooth top, fillet, toe or heel), from the TCA's physical-contact status; ``n_positions`` when the TCA
+    itself fails.
+    """
+    from ..errors import NoContactError
+    from ..meshing.generated_surface import phased_for_pair
+    from ..meshing.kinematics import BevelPairKinematics
+    from ..meshing.tca import solve_tca
+
+    kin = BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
+    c1, c2 = phased_for_pair(pinion_flank, gear_flank)
+    start = np.r_[c1.reference_params, c2.reference_params, 0.0]
+    try:
+        res = solve_tca(c1, c2, kin, n_positions=n_positions, start=start)
+    except (NoContactError, ConvergenceError):
+        return n_positions
+    return int(np.sum(~np.isfinite(res.te) | res.edge_contact))
+
+
 def _default_spec_class():
     from ..io.design_schema import SynthesisSpec
 
@@ -161,19 +192,44 @@ def _synthesize_sides(sy, blank, setups, syn):
         pin = setups[(Member.PINION, s1)]
         hint = pin.source.startswith("basic settings solved")   # start from the pinion's solved basic settings
         # the design file's set of solved settings first; for the default synthesis the other sets after it
-        names = [sy.free] + ([f for f in _FREE if f != sy.free] if getattr(sy, "_default", False) else [])
-        for k, free in enumerate(names):
-            try:
-                res = syn.synthesize_pinion(
-                    gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
-                    semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
-                    approach=sy.approach, free=getattr(syn, _FREE[free]),
-                    pinion_cutter_hint=pin.cutter if hint else None,
-                    pinion_settings_hint=pin.settings if hint else None)
+        default = getattr(sy, "_default", False)
+        names = [sy.free] + ([f for f in _FREE if f != sy.free] if default else [])
+        # the default synthesis also adapts the path direction: the first of DEFAULT_PATH_DIRECTIONS whose pair keeps
+        # the bearing inside both flanks over the whole mesh cycle (TCA: real contact, no edge, at every position);
+        # if none does, the one with the fewest positions off the flank
+        etas = DEFAULT_PATH_DIRECTIONS if default else (sy.path_direction,)
+        best = None
+        for eta in etas:
+            for k, free in enumerate(names):
+                try:
+                    res = syn.synthesize_pinion(
+                        gear.cutter, gear.settings, blank, side=s1, eta=math.radians(eta),
+                        semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
+                        approach=sy.approach, free=getattr(syn, _FREE[free]),
+                        pinion_cutter_hint=pin.cutter if hint else None,
+                        pinion_settings_hint=pin.settings if hint else None)
+                    break
+                except ConvergenceError as err:
+                    if k == len(names) - 1:
+                        if not default:
+                            raise
+                        res, last = None, err
+            if res is None:
+                continue
+            if not default:
+                best = (0, res, free)
                 break
-            except ConvergenceError:
-                if k == len(names) - 1:
-                    raise
+            off = bearing_off_flank(blank, res.pinion_flank, gear.flank)
+            if best is None or off < best[0]:
+                best = (off, res, free)
+            if off == 0:
+                break
+        if best is None:   # every path direction (the given one, or all defaults) failed to converge: say so
+            raise ConvergenceError(f"{name} side: the default local synthesis of the pinion did not converge for any "
+                                   f"path direction ({', '.join(f'{e:g}' for e in etas)} deg; last: {last}); give a "
+                                   "[synthesis] section (synthesis.path_direction, synthesis.semi_major_axis)",
+                                   last.iterations, last.residual, last.last) from last
+        _, res, free = best
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
                                               res.pinion_flank, f"local synthesis ({name} side, free = {free})")
         results[name] = res
