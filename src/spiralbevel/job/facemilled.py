@@ -94,13 +94,17 @@ def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK
 
     Counts positions with no real-flank contact and positions in edge contact (the contact point beyond a flank
     boundary: tooth top, fillet, toe or heel), from the TCA's physical-contact status; ``n_positions`` when the TCA
-    itself fails.
+    itself fails or the pinion flank does not cover the whole face.
     """
     from ..errors import NoContactError
     from ..meshing.generated_surface import phased_for_pair
     from ..meshing.kinematics import BevelPairKinematics
     from ..meshing.tca import solve_tca
 
+    try:   # the synthesized flank must cover the whole face (the grid of the report, the CAD and the TCA outline)
+        pinion_flank.grid(9, 5, curvature=False)
+    except GeometryError:
+        return n_positions
     kin = BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
     c1, c2 = phased_for_pair(pinion_flank, gear_flank)
     start = np.r_[c1.reference_params, c2.reference_params, 0.0]
@@ -209,11 +213,14 @@ def _synthesize_sides(sy, blank, setups, syn):
                         pinion_cutter_hint=pin.cutter if hint else None,
                         pinion_settings_hint=pin.settings if hint else None)
                     break
-                except ConvergenceError as err:
-                    if k == len(names) - 1:
-                        if not default:
-                            raise
+                except (ConvergenceError, GeometryError) as err:
+                    # the default tries the next set of settings, then the next path direction; a given
+                    # [synthesis] section gets its own error
+                    if not default and (k == len(names) - 1 or not isinstance(err, ConvergenceError)):
+                        raise
+                    if k == len(names) - 1 or not isinstance(err, ConvergenceError):
                         res, last = None, err
+                        break
             if res is None:
                 continue
             if not default:
@@ -224,11 +231,12 @@ def _synthesize_sides(sy, blank, setups, syn):
                 best = (off, res, free)
             if off == 0:
                 break
-        if best is None:   # every path direction (the given one, or all defaults) failed to converge: say so
-            raise ConvergenceError(f"{name} side: the default local synthesis of the pinion did not converge for any "
-                                   f"path direction ({', '.join(f'{e:g}' for e in etas)} deg; last: {last}); give a "
-                                   "[synthesis] section (synthesis.path_direction, synthesis.semi_major_axis)",
-                                   last.iterations, last.residual, last.last) from last
+        if best is None:   # every default path direction failed: say so, with the last reason
+            raise ConvergenceError(f"{name} side: the default local synthesis of the pinion found no pinion flank for "
+                                   f"any path direction ({', '.join(f'{e:g}' for e in etas)} deg; last: {last}); "
+                                   "give a [synthesis] section (synthesis.path_direction, synthesis.semi_major_axis, "
+                                   "synthesis.te_magnitude)", getattr(last, "iterations", 0),
+                                   getattr(last, "residual", float("inf")), getattr(last, "last", None)) from last
         _, res, free = best
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
                                               res.pinion_flank, f"local synthesis ({name} side, free = {free})")
