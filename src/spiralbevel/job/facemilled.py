@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from .._core.rotations import rot_z
 from ..conventions import Member, Side
-from ..errors import ConvergenceError, DesignError, GeometryError
+from ..errors import ConvergenceError, DesignError, DesignWarning, GeometryError
 from ..meshing.tca_result import ARCSEC
 
 MEMBERS = (Member.PINION, Member.GEAR)
@@ -349,6 +350,33 @@ def rotate_grid(points, normals, angle):
     return points @ R.T, normals @ R.T
 
 
+#: tolerances of the developed-flank checks: the acceptance of the basic settings (0.05 deg on the mean-point
+#: angles, 0.01 mm of the root on the root cone)
+CHECK_ANGLE_DEG = 0.05
+CHECK_ROOT_MM = 0.01
+
+
+def flank_checks(fit, member, side) -> list[str]:
+    """Warnings on one developed flank from its design-vs-achieved values (``FlankFit``), each naming the key."""
+    key = f"face_milling.{Member(member).value}_{Side(side).value}"
+    out = []
+    da = math.degrees(fit.pressure_angle - fit.pressure_angle_design)
+    if abs(da) > CHECK_ANGLE_DEG:
+        out.append(f"mean-point pressure angle {math.degrees(fit.pressure_angle):.3f} deg misses the design "
+                   f"{math.degrees(fit.pressure_angle_design):.3f} deg by {da:+.3f} deg: change "
+                   f"{key}.cutter.blade_angle (or leave {key} out to have it solved)")
+    db = math.degrees(fit.spiral_angle - fit.spiral_angle_design)
+    if abs(db) > CHECK_ANGLE_DEG:
+        out.append(f"mean-point spiral angle {math.degrees(fit.spiral_angle):.3f} deg misses the design "
+                   f"{math.degrees(fit.spiral_angle_design):.3f} deg by {db:+.3f} deg: change {key}.machine "
+                   f"(or leave {key} out to have it solved)")
+    for where, dev in zip(("toe", "mean", "heel"), fit.root_deviation):
+        if dev is not None and dev < -CHECK_ROOT_MM:
+            out.append(f"root {-dev:.3f} mm below the blank's root cone at the {where}: the cutter cuts below the "
+                       f"root cone; change {key}.machine.machine_root_angle / sliding_base (or leave {key} out)")
+    return out
+
+
 def flank_report(setups, blank=None):
     """``flanks`` and ``machine_settings`` report sections (degrees, mm, 1/mm); with the blank, each flank's design
     against achieved mean-point angles and root position (``design_vs_achieved``)."""
@@ -379,5 +407,18 @@ def flank_report(setups, blank=None):
         fit = st.fit if st.fit is not None else (flank_fit(blank, st.flank) if blank is not None else None)
         if fit is not None:
             flanks[m.value][s.value]["design_vs_achieved"] = fit.to_dict()
+            flanks[m.value][s.value]["checks"] = flank_checks(fit, m, s)
+    if blank is not None and "pinion" in flanks and {"concave", "convex"} <= set(flanks["pinion"]):
+        from ..design.blank_checks import achieved_undercut
+
+        p = flanks["pinion"]
+        found = achieved_undercut(blank, math.radians(p["concave"]["pressure_angle_deg"]),
+                                  math.radians(p["convex"]["pressure_angle_deg"]))
+        for side in ("concave", "convex"):
+            p[side].setdefault("checks", []).extend(found)
+    for m_name, sides in flanks.items():
+        for side, d in sides.items():
+            for text in d.get("checks", ()):
+                warnings.warn(f"{m_name} {side}: {text}", DesignWarning, stacklevel=2)
     units = {"settings": "mm; cradle_angle and machine_root_angle in deg; ratio_of_roll dimensionless"}
     return flanks, dict(machines, units=units)
