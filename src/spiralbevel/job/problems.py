@@ -16,7 +16,9 @@ _NUM = re.compile(r"[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
 
 def _deg_text(text: str) -> str:
     """Numbers in an allowed-range text, read as rad, rewritten in degrees ("pi/2" too)."""
-    text = text.replace("pi/2", "\x00").replace("pi", "\x01")
+    # "pi" only as a word: "pitch angle" in an allowed text stays as it is
+    text = re.sub(r"\bpi/2\b", "\x00", text)
+    text = re.sub(r"\bpi\b", "\x01", text)
     text = _NUM.sub(lambda m: f"{math.degrees(float(m.group())):.6g}", text)
     return text.replace("\x00", "90").replace("\x01", "180")
 
