@@ -52,6 +52,9 @@ def test_all_four_flanks_hit_the_design(report):
             assert d["pressure_angle_deg"] == pytest.approx(20.0, abs=0.05)
             assert d["spiral_angle_deg"] == pytest.approx(35.0, abs=0.05)
     assert set(report["synthesis"]) == {"drive", "coast"}
+    for m in ("pinion", "gear"):
+        for s in ("convex", "concave"):   # no developed-pair warning: angles, root, undercut at the achieved angles
+            assert report["flanks"][m][s]["checks"] == [], (m, s)
 
 
 def test_default_pair_te_level(report):
@@ -68,3 +71,13 @@ def test_default_pair_te_level(report):
         # +-10 % acceptance: the synthesis fixes the second derivative at the mean point; third-order terms of the
         # real flanks bend the curve away from the parabola by a few percent over the fitted window
         assert level == pytest.approx(DEFAULT_SYNTHESIS["te_magnitude"], rel=0.10), (name, level)
+
+
+def test_default_bearing_inside_the_flank(report):
+    """The TCA's physical-contact status at every position of the mesh cycle: a real-flank contact (no position without
+    contact) and no edge contact (the contact point inside the pinion and gear flank boundaries) on both sides."""
+    for name in ("drive", "coast"):
+        t = report["tca"][name]
+        assert t["status"] == "ok", (name, t["edge_contacts"])
+        assert t["contact_positions"] == t["positions"], (name, t["no_contact_positions_rad"])
+        assert not t["edge_contact_positions_rad"], name

@@ -64,12 +64,19 @@ def check_boundaries(name, b, pitch_angle):
     if not (0.0 < b.inner_cone_distance < b.outer_cone_distance):
         problems.append(Problem(f"{name}.inner_cone_distance", b.inner_cone_distance,
                                 f"0 < value < outer_cone_distance = {b.outer_cone_distance}", "mm"))
+    # a parallel-depth blank (gear_set.depth.taper = "uniform": root and face angles equal the pitch angle) cannot
+    # carry the tapered log-spiral tooth: say which key to change
+    parallel = ("parallel depth (root and face angle equal to the pitch angle, as gear_set.depth.taper = 'uniform' "
+                "gives): the log-spiral tooth needs a tapered depth; use gear_set.depth.taper = 'standard' or "
+                "'duplex', or flank.kind = 'face-milled'")
     if not (0.0 < b.root_angle < pitch_angle):
         problems.append(Problem(f"{name}.root_angle", b.root_angle,
-                                f"0 < value < pitch angle = {pitch_angle:.10g}", "rad"))
+                                f"0 < value < pitch angle = {pitch_angle:.10g}", "rad",
+                                parallel if abs(b.root_angle - pitch_angle) < 1e-12 else ""))
     if not (pitch_angle < b.face_angle < np.pi / 2):
         problems.append(Problem(f"{name}.face_angle", b.face_angle,
-                                f"pitch angle = {pitch_angle:.10g} < value < pi/2", "rad"))
+                                f"pitch angle = {pitch_angle:.10g} < value < pi/2", "rad",
+                                parallel if abs(b.face_angle - pitch_angle) < 1e-12 else ""))
     if problems:
         raise DesignError(problems)
 

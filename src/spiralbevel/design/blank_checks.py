@@ -24,7 +24,7 @@ from ..errors import Problem
 from .blank_result import BevelBlank
 from .blank_thickness import tip_thickness, undercut_limit_depth, virtual_normal_diameter
 
-__all__ = ["check_blank", "normal_thickness", "top_land", "section_limit_depth"]
+__all__ = ["check_blank", "normal_thickness", "top_land", "section_limit_depth", "achieved_undercut"]
 
 _MEMBER = {1: "pinion", 2: "wheel"}
 _MIN_TOPLAND = 0.2  # fraction of the normal module of the section
@@ -196,3 +196,36 @@ def check_blank(bl: BevelBlank) -> tuple[list[Problem], list[str]]:
         warn.append(f"the toe spiral angle changes sign (beta_i = {math.degrees(bl.beta_i1):.4g} deg): cutter radius "
                     f"rc0 = {bl.rc0:.4g} mm is small for this face width")
     return err, warn
+
+
+def achieved_undercut(bl: BevelBlank, alpha_drive: float, alpha_coast: float) -> list[str]:
+    """Pinion undercut at the mean point with the pressure angles the generated pinion flanks achieve.
+
+    The same criterion as :func:`check_blank` (the active flank, down to the gear's mean addendum ham2, and the full
+    dedendum hfm1 against the limit depth (dvn1/2) sin^2(alpha)), with alpha the smaller of the achieved mean-point
+    normal pressure angles of the pinion's drive (concave) and coast (convex) flanks instead of the nominal one.
+
+    Parameters
+    ----------
+    bl : BevelBlank
+    alpha_drive, alpha_coast : float, rad
+        Achieved mean-point normal pressure angles of the pinion concave and convex flanks.
+
+    Returns
+    -------
+    list of str
+        Warnings, each with the reason and the design-file key to change (empty: no undercut).
+    """
+    r, beta, _ha, _hf = _section(bl, 1, "m")
+    dvn = virtual_normal_diameter(r, bl.delta1, beta, _cos2_alpha(bl))
+    alpha = min(alpha_drive, alpha_coast)
+    hlim = undercut_limit_depth(dvn, alpha)
+    what = (f"at the achieved pinion pressure angle {math.degrees(alpha):.3f} deg (mean point): limit depth "
+            f"(dvn1/2)*sin^2(alpha) = {hlim:.4g} mm")
+    if bl.ham2 > hlim:
+        return [f"pinion undercut {what} < gear addendum ham2 = {bl.ham2:.4g} mm: the active flank reaches below the "
+                "interference point; increase gear_set.pinion_teeth or gear_set.normal_pressure_angle"]
+    if bl.hfm1 > hlim:
+        return [f"pinion root undercut {what} < dedendum hfm1 = {bl.hfm1:.4g} mm (below the active flank); "
+                "increase gear_set.normal_pressure_angle to clear it"]
+    return []

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from .._core.rotations import rot_z
 from ..conventions import Member, Side
-from ..errors import ConvergenceError, DesignError, GeometryError
+from ..errors import ConvergenceError, DesignError, DesignWarning, GeometryError
 from ..meshing.tca_result import ARCSEC
 
 MEMBERS = (Member.PINION, Member.GEAR)
@@ -78,6 +79,41 @@ def setup_flanks(spec, blank, with_synthesis: bool = False):
 #: similar relative curvatures), parabolic TE of 8 arcsec over half a mesh cycle on each side of the mean contact
 DEFAULT_SYNTHESIS = dict(sides=("drive", "coast"), path_direction=0.0, semi_major_axis_fraction=0.15,
                          approach_fraction=0.00635 / 37.0, te_magnitude=8.0)
+
+
+#: path directions (deg, on the gear from the profile direction) the default synthesis tries in turn, per side, until
+#: the TCA keeps the bearing inside both flanks: a path across the profile suits most designs; when the mean point is
+#: near a tooth top (a small gear addendum), a path turned toward the lengthwise direction keeps the contact off it
+DEFAULT_PATH_DIRECTIONS = (0.0, -20.0, 20.0, -40.0, 40.0, -55.0, 55.0)
+
+#: positions of the TCA that checks the default bearing over one mesh cycle
+_CHECK_POSITIONS = 41   # as the job's TCA (run_pair_tca)
+
+
+def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK_POSITIONS) -> int:
+    """Number of TCA positions over one mesh cycle at which the pair's contact is not inside both flanks.
+
+    Counts positions with no real-flank contact and positions in edge contact (the contact point beyond a flank
+    boundary: tooth top, fillet, toe or heel), from the TCA's physical-contact status; ``n_positions`` when the TCA
+    itself fails or the pinion flank does not cover the whole face.
+    """
+    from ..errors import NoContactError
+    from ..meshing.generated_surface import phased_for_pair
+    from ..meshing.kinematics import BevelPairKinematics
+    from ..meshing.tca import solve_tca
+
+    try:   # the synthesized flank must cover the whole face (the grid of the report, the CAD and the TCA outline)
+        pinion_flank.grid(9, 5, curvature=False)
+    except GeometryError:
+        return n_positions
+    kin = BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
+    c1, c2 = phased_for_pair(pinion_flank, gear_flank)
+    start = np.r_[c1.reference_params, c2.reference_params, 0.0]
+    try:
+        res = solve_tca(c1, c2, kin, n_positions=n_positions, start=start)
+    except (NoContactError, ConvergenceError):
+        return n_positions
+    return int(np.sum(~np.isfinite(res.te) | res.edge_contact))
 
 
 def _default_spec_class():
@@ -161,19 +197,48 @@ def _synthesize_sides(sy, blank, setups, syn):
         pin = setups[(Member.PINION, s1)]
         hint = pin.source.startswith("basic settings solved")   # start from the pinion's solved basic settings
         # the design file's set of solved settings first; for the default synthesis the other sets after it
-        names = [sy.free] + ([f for f in _FREE if f != sy.free] if getattr(sy, "_default", False) else [])
-        for k, free in enumerate(names):
-            try:
-                res = syn.synthesize_pinion(
-                    gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),
-                    semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
-                    approach=sy.approach, free=getattr(syn, _FREE[free]),
-                    pinion_cutter_hint=pin.cutter if hint else None,
-                    pinion_settings_hint=pin.settings if hint else None)
+        default = getattr(sy, "_default", False)
+        names = [sy.free] + ([f for f in _FREE if f != sy.free] if default else [])
+        # the default synthesis also adapts the path direction: the first of DEFAULT_PATH_DIRECTIONS whose pair keeps
+        # the bearing inside both flanks over the whole mesh cycle (TCA: real contact, no edge, at every position);
+        # if none does, the one with the fewest positions off the flank
+        etas = DEFAULT_PATH_DIRECTIONS if default else (sy.path_direction,)
+        best = None
+        for eta in etas:
+            for k, free in enumerate(names):
+                try:
+                    res = syn.synthesize_pinion(
+                        gear.cutter, gear.settings, blank, side=s1, eta=math.radians(eta),
+                        semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
+                        approach=sy.approach, free=getattr(syn, _FREE[free]),
+                        pinion_cutter_hint=pin.cutter if hint else None,
+                        pinion_settings_hint=pin.settings if hint else None)
+                    break
+                except (ConvergenceError, GeometryError) as err:
+                    # the default tries the next set of settings, then the next path direction; a given
+                    # [synthesis] section gets its own error
+                    if not default and (k == len(names) - 1 or not isinstance(err, ConvergenceError)):
+                        raise
+                    if k == len(names) - 1 or not isinstance(err, ConvergenceError):
+                        res, last = None, err
+                        break
+            if res is None:
+                continue
+            if not default:
+                best = (0, res, free)
                 break
-            except ConvergenceError:
-                if k == len(names) - 1:
-                    raise
+            off = bearing_off_flank(blank, res.pinion_flank, gear.flank)
+            if best is None or off < best[0]:
+                best = (off, res, free)
+            if off == 0:
+                break
+        if best is None:   # every default path direction failed: say so, with the last reason
+            raise ConvergenceError(f"{name} side: the default local synthesis of the pinion found no pinion flank for "
+                                   f"any path direction ({', '.join(f'{e:g}' for e in etas)} deg; last: {last}); "
+                                   "give a [synthesis] section (synthesis.path_direction, synthesis.semi_major_axis, "
+                                   "synthesis.te_magnitude)", getattr(last, "iterations", 0),
+                                   getattr(last, "residual", float("inf")), getattr(last, "last", None)) from last
+        _, res, free = best
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
                                               res.pinion_flank, f"local synthesis ({name} side, free = {free})")
         results[name] = res
@@ -324,6 +389,33 @@ def rotate_grid(points, normals, angle):
     return points @ R.T, normals @ R.T
 
 
+#: tolerances of the developed-flank checks: the acceptance of the basic settings (0.05 deg on the mean-point
+#: angles, 0.01 mm of the root on the root cone)
+CHECK_ANGLE_DEG = 0.05
+CHECK_ROOT_MM = 0.01
+
+
+def flank_checks(fit, member, side) -> list[str]:
+    """Warnings on one developed flank from its design-vs-achieved values (``FlankFit``), each naming the key."""
+    key = f"face_milling.{Member(member).value}_{Side(side).value}"
+    out = []
+    da = math.degrees(fit.pressure_angle - fit.pressure_angle_design)
+    if abs(da) > CHECK_ANGLE_DEG:
+        out.append(f"mean-point pressure angle {math.degrees(fit.pressure_angle):.3f} deg misses the design "
+                   f"{math.degrees(fit.pressure_angle_design):.3f} deg by {da:+.3f} deg: change "
+                   f"{key}.cutter.blade_angle (or leave {key} out to have it solved)")
+    db = math.degrees(fit.spiral_angle - fit.spiral_angle_design)
+    if abs(db) > CHECK_ANGLE_DEG:
+        out.append(f"mean-point spiral angle {math.degrees(fit.spiral_angle):.3f} deg misses the design "
+                   f"{math.degrees(fit.spiral_angle_design):.3f} deg by {db:+.3f} deg: change {key}.machine "
+                   f"(or leave {key} out to have it solved)")
+    for where, dev in zip(("toe", "mean", "heel"), fit.root_deviation):
+        if dev is not None and dev < -CHECK_ROOT_MM:
+            out.append(f"root {-dev:.3f} mm below the blank's root cone at the {where}: the cutter cuts below the "
+                       f"root cone; change {key}.machine.machine_root_angle / sliding_base (or leave {key} out)")
+    return out
+
+
 def flank_report(setups, blank=None):
     """``flanks`` and ``machine_settings`` report sections (degrees, mm, 1/mm); with the blank, each flank's design
     against achieved mean-point angles and root position (``design_vs_achieved``)."""
@@ -354,5 +446,18 @@ def flank_report(setups, blank=None):
         fit = st.fit if st.fit is not None else (flank_fit(blank, st.flank) if blank is not None else None)
         if fit is not None:
             flanks[m.value][s.value]["design_vs_achieved"] = fit.to_dict()
+            flanks[m.value][s.value]["checks"] = flank_checks(fit, m, s)
+    if blank is not None and "pinion" in flanks and {"concave", "convex"} <= set(flanks["pinion"]):
+        from ..design.blank_checks import achieved_undercut
+
+        p = flanks["pinion"]
+        found = achieved_undercut(blank, math.radians(p["concave"]["pressure_angle_deg"]),
+                                  math.radians(p["convex"]["pressure_angle_deg"]))
+        for side in ("concave", "convex"):
+            p[side].setdefault("checks", []).extend(found)
+    for m_name, sides in flanks.items():
+        for side, d in sides.items():
+            for text in d.get("checks", ()):
+                warnings.warn(f"{m_name} {side}: {text}", DesignWarning, stacklevel=2)
     units = {"settings": "mm; cradle_angle and machine_root_angle in deg; ratio_of_roll dimensionless"}
     return flanks, dict(machines, units=units)
