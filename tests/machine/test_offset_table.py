@@ -1,6 +1,6 @@
 """Variable blank offset from a table of nodes (piecewise linear or cubic spline): the law itself, the sign and
 validation in MachineSettings, and — the point of it — that dE_m/dt enters the relative velocity of generation
-(ERRATA §1.1 Eq. (15)). The generation tests already cover the polynomial law (tests/generation/test_flank.py)."""
+(docs/theory/generation.md, Eqs. (G5)-(G6)). The generation tests already cover the polynomial law (tests/generation/test_flank.py)."""
 
 import math
 import os

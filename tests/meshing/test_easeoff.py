@@ -40,7 +40,7 @@ def seed001():
 @pytest.mark.parametrize("hand", [Hand.RIGHT, Hand.LEFT])
 @pytest.mark.parametrize("side", [Side.CONCAVE, Side.CONVEX])
 def test_conjugate_logspiral_pair_has_zero_easeoff(hand, side):
-    """Seed 002 / ERRATA §2.2: the designed log-spiral flanks are exactly conjugate (line contact)."""
+    """Seed 002 / docs/theory/gearing.md, Eqs. (M1)-(M8): the designed log-spiral flanks are exactly conjugate (line contact)."""
     pair, kin = _pair(hand)
     e = easeoff(pair.flank(Member.PINION, side), pair.flank(Member.GEAR, side.mate), kin, n_face=9, n_profile=5)
     assert np.max(np.abs(e.values)) < 1e-8

@@ -12,14 +12,14 @@ from spiralbevel.meshing.kinematics import BevelPairKinematics
 
 
 def _c(case):
-    """arccos(tan d1 / tan g1): half the angle between the two planes of action (ERRATA §2.2)."""
+    """arccos(tan d1 / tan g1): half the angle between the two planes of action (docs/theory/gearing.md, Eq. (M7))."""
     return np.arccos(np.tan(case.delta1) / np.tan(case.kin.pitch_angle_pinion))
 
 
 @pytest.mark.parametrize("pair", PAIRS)
 @pytest.mark.parametrize("branch", [1, -1])
 def test_meshing_roots_match_closed_form(pair, branch):
-    # ERRATA §2.2: phi1* = +-arccos(tan d1 / tan g1) - varphi for a seed-000 flank; +1 <-> "+" with outward n, psi>0
+    # docs/theory/gearing.md, Eqs. (M1)-(M8): phi1* = +-arccos(tan d1 / tan g1) - varphi for a seed-000 flank; +1 <-> "+" with outward n, psi>0
     case = make_case(*pair)
     env = solve_envelope(case.surface, case.kin, case.u, case.v, branch=branch)
     varphi = case.u + case.v / np.sin(case.delta1)
@@ -51,7 +51,7 @@ def test_vectorized_roots_equal_per_point_scipy():
 
 
 def test_envelope_condition_by_differentiating_the_family():
-    # independent second method (ERRATA §2.1 item 13): det[r2_u, r2_v, r2_phi1] = 0 at the solved phi1, where
+    # independent second method (docs/theory/gearing.md#conjugacy): det[r2_u, r2_v, r2_phi1] = 0 at the solved phi1, where
     # r2(u, v, phi1) = M(phi1) r1(u, v) is the family of member-1 surfaces in the gear frame (central differences)
     case = make_case(*PAIRS[4])
     u, v = case.u[::6], case.v[:, ::4]
@@ -81,7 +81,7 @@ def test_envelope_condition_by_differentiating_the_family():
 
 @pytest.mark.parametrize("pair", PAIRS)
 def test_conjugate_of_logspiral_is_mating_logspiral(pair):
-    # ERRATA §2.2 conjugacy theorem: base cones sin d1/sin g1 = sin d2/sin g2 -> envelope is the seed-000 flank
+    # docs/theory/gearing.md, Eqs. (M1)-(M8): base cones sin d1/sin g1 = sin d2/sin g2 -> envelope is the seed-000 flank
     # (d2, beta2 = -beta, psi2 > 0) on the plane +arccos; distance <= 1e-9 mm, 1 - |n.n| <= 1e-12
     case = make_case(*pair)
     env = solve_envelope(case.surface, case.kin, case.u, case.v, branch=1)
@@ -91,11 +91,11 @@ def test_conjugate_of_logspiral_is_mating_logspiral(pair):
     cand, bounds = gear_candidate(env.points, case.delta2, -case.beta)
     rep = compare_conjugate(env.points, env.normals, cand, bounds, tol=1e-12,
                             invariant=lambda x: logspiral_invariant(x, case.delta2, -case.beta))
-    assert rep.max_distance <= 1e-9  # brief; measured <= 1e-12 with tol=1e-12 (ERRATA §2.2: 2.9e-13)
+    assert rep.max_distance <= 1e-9  # brief; measured <= 1e-12 with tol=1e-12 (docs/theory/gearing.md, Eqs. (M1)-(M8): 2.9e-13)
     assert rep.max_distance <= 1e-12
     assert rep.max_normal_mismatch <= 1e-12
     assert rep.n_outside == 0 and rep.is_conjugate
-    # outward normals: the envelope normal is the outward normal of the psi2 > 0 gear flank (n, ERRATA §0.1)
+    # outward normals: the envelope normal is the outward normal of the psi2 > 0 gear flank (n, docs/theory/logspiral.md, Eq. (S2) (#surface))
     foot = nearest_points(env.points, cand, bounds)
     assert np.min(np.einsum("ij,ij->i", foot.normals, env.normals.reshape(-1, 3))) > 1 - 1e-12
 
@@ -109,7 +109,7 @@ def test_other_plane_of_action_gives_the_psi_negative_branch(pair):
 
 
 def test_wrong_base_cone_is_reported():
-    # ERRATA §2.2: d2 + 0.5 deg -> invariant spread ~1.3e-3, distance ~0.14 mm, mismatch ~6e-5 (their grid);
+    # docs/theory/gearing.md, Eqs. (M1)-(M8): d2 + 0.5 deg -> invariant spread ~1.3e-3, distance ~0.14 mm, mismatch ~6e-5 (their grid);
     # here the spread, distance and mismatch must be far above the conjugate-case values and the report must flag it
     case = make_case(*PAIRS[0])
     env = solve_envelope(case.surface, case.kin, case.u, case.v)

@@ -89,7 +89,7 @@ def dedendum_angle_sum_duplex(met: float, re: float, rm: float, beta_m: float, t
     -------
     float, rad
         ΣθfC = (π·met / (2·Re·tan αn·cos βm))·(1 − Rm·sin βm / rc0); in degrees the standard writes the factor
-        90 instead of π/2 (ISO 23509 duplex taper; reference/iso23509-sample1.md gives 8.6277° for Sample 1).
+        90 instead of π/2 (ISO 23509 duplex taper; ISO 23509:2016 Annex F, Sample 1 gives 8.6277°).
     """
     return (0.5 * math.pi * met / (re * tan_alpha * math.cos(beta_m))) * (1.0 - rm * math.sin(beta_m) / rc0)
 

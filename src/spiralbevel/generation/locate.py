@@ -1,4 +1,4 @@
-"""Batched location of generated flank points by Newton's method (seed 003 with ERRATA §3.1 step 7).
+"""Batched location of generated flank points by Newton's method (seed 003 with docs/theory/generation.md, Eqs. (G10)-(G11) (#mean-point)).
 
 A point is located by two conditions on the generated surface (u, psi_c) -> r_i, with the cutter angle theta in
 closed form at every iterate. For a target (axial, radius) in the member frame the conditions are the corrected

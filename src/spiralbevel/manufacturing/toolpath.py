@@ -1,7 +1,7 @@
 """5-axis ball-end milling of a log-spiral flank along its lengthwise lines of curvature (seed 000 §5.2).
 
 The passes are the phi-curves (varphi = const): planar log spirals, which are lines of curvature because F = M = 0
-(ERRATA §0.2 items 16, 23), as seed 000 §5.2 recommends to keep the curvature streamlines. Neighbouring passes are
+(docs/theory/logspiral.md, Eqs. (S7)-(S8)), as seed 000 §5.2 recommends to keep the curvature streamlines. Neighbouring passes are
 spaced across the profile direction e1 from a requested scallop height with the exact circle model of
 :mod:`spiralbevel.manufacturing.scallop`, using the profile curvature kappa1 (the normal curvature across the pass).
 """
@@ -141,7 +141,7 @@ def _check_angle(value, field):
 
 
 def _kappa1(psi, rho, beta):
-    """Profile curvature, convex positive: cos(psi - beta) / (rho |sin psi|) (ERRATA §0.1 k1 with n_out)."""
+    """Profile curvature, convex positive: cos(psi - beta) / (rho |sin psi|) (docs/theory/logspiral.md, Eq. (S9) (#flank-types) k1 with n_out)."""
     return np.cos(psi - beta) / (rho * np.abs(np.sin(psi)))
 
 
@@ -329,7 +329,7 @@ def plan_toolpath(flank: FlankLike, domain, tool_radius: float, scallop_height: 
     -----
     Passes: varphi = const curves, ds = |d rho| / cos(beta). Between passes varphi_a and varphi_b, for every shared
     phi the surface arc across is rho cos(delta)/sin(delta) |cos psi_a - cos psi_b| (integral of |r_varphi|,
-    ERRATA §0.1 E). The next pass is the farthest one for which that arc stays below the exact stepover of
+    docs/theory/logspiral.md, Eqs. (S3)-(S8) E). The next pass is the farthest one for which that arc stays below the exact stepover of
     :func:`~spiralbevel.manufacturing.scallop.stepover_for_scallop` for the most convex profile curvature kappa1 of
     the strip, at every one of 257 phi samples (brentq on varphi). The lengthwise curvature kappa2 enters only the
     gouge check. Global interference with the neighbouring tooth is not checked.

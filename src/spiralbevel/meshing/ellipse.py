@@ -15,7 +15,7 @@ the contact ellipse has semi-axes
     a = sqrt(2 delta / lam_1) = sqrt(delta / A),     b = sqrt(2 delta / lam_2) = sqrt(delta / B),
 
 the major axis along the eigenvector of lam_1 (Litvin & Fuentes, Gear Geometry and Applied Theory, 2nd ed.,
-§9.6: 2a = 2 |delta / A|^(1/2)). delta = 0.00635 mm is Gleason's 0.00025 in (seed 001 §4.3.2, ERRATA §1.1).
+§9.6: 2a = 2 |delta / A|^(1/2)). delta = 0.00635 mm is Gleason's 0.00025 in (seed 001 §4.3.2, docs/theory/ltca.md, Eq. (L6) / docs/theory/tca.md, Eq. (T6)).
 K must be positive definite; lam_1 = 0 is line contact (a = inf), lam_1 < 0 means the surfaces interfere.
 """
 

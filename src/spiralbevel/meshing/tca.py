@@ -1,4 +1,4 @@
-"""Tooth contact analysis (TCA) of a bevel pair: seed 001 §4 (Eq. (16), ERRATA §1.1) on any two
+"""Tooth contact analysis (TCA) of a bevel pair: seed 001 §4 (Eq. (16), docs/theory/tca.md, Eq. (T5)) on any two
 :class:`~spiralbevel.meshing.contact_surface.ContactSurface` flanks.
 
 For each pinion rotation phi1 the contact system (coincident points, opposite outward normals; 5 equations in the

@@ -30,7 +30,7 @@ def plot_draft(result, ax=None, coords: str = "varphi"):
     -----
     Colours: green = draftable (n_out · v_d <= 0), red = fails. The black line is the zero contour of n_out · v_d
     from the grid; the dashed line is the analytic boundary |varphi - phi| = |beta| / sin(delta) where it exists
-    (die direction along ±z, ERRATA §0.2 item 24). Angles are shown in degrees.
+    (die direction along ±z, docs/theory/logspiral.md, Eq. (S13)). Angles are shown in degrees.
     """
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap

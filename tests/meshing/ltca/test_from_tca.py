@@ -2,7 +2,7 @@
 
 Pair: the 23/65 log-spiral design of conftest.py, pinion concave flank crowned by a quadratic normal deviation
 (contact_surface.NormalDeviation), gear convex flank exact; coarse FE tooth segments (9 x 6 flank grids, quadratic
-tetrahedra) of both members. Seed 001 Eq. (18), ERRATA §1.1 "LTCA (18)".
+tetrahedra) of both members. Seed 001 Eq. (18), docs/theory/ltca.md, Eqs. (L1)-(L4).
 """
 
 import importlib.util
