@@ -24,7 +24,8 @@ def default_run(tmp_path_factory):
 def test_default_run_writes_everything(default_run):
     out, report = default_run
     names = set(report["files"])
-    assert {"report.json", "curvature_maps.png", "curvature_domain.png", "pitch_traces.png", "meshing_pair_3d.png", "transverse_section.png", "draft_map.png",
+    assert {"report.json", "curvature_maps.png", "curvature_domain.png", "pitch_traces.png", "meshing_pair_3d.png",
+            "transverse_section.png", "draft_map.png",
             "pinion_tooth.stl", "gear_tooth.stl", "pinion.stl", "gear.stl"} <= names
     assert sum(n.startswith("toolpath_") and n.endswith(".csv") for n in names) == 4
     for n in names:

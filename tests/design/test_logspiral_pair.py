@@ -1,4 +1,5 @@
-"""Log-spiral pair design (docs/theory/logspiral.md, Eq. (S12); docs/theory/gearing.md, Eq. (M8)) checked by independent measurements."""
+"""Log-spiral pair design (docs/theory/logspiral.md, Eq. (S12); docs/theory/gearing.md, Eq. (M8)) checked by independent
+measurements."""
 
 import numpy as np
 import pytest
@@ -34,7 +35,8 @@ def _pair(z1, z2, shaft, an, bm, hand, **kw):
 
 
 def test_example_recipe_numbers():
-    """docs/theory/logspiral.md, Eq. (S2) (#surface) example (23/65, S = 90, alpha_n = 20, beta_m = 35 deg); printed to 10 decimals of a degree."""
+    """docs/theory/logspiral.md, Eq. (S2) (#surface) example (23/65, S = 90, alpha_n = 20, beta_m = 35 deg); printed to
+    10 decimals of a degree."""
     p = _pair(23, 65, 90.0, 20.0, 35.0, Hand.RIGHT)
     assert np.degrees(p.pinion.pitch_angle) == pytest.approx(19.4861295725, abs=1e-10)
     assert np.degrees(p.transverse_pressure_angle) == pytest.approx(23.9568032445, abs=1e-10)
@@ -87,13 +89,14 @@ def _invert_onto(flank, side, q):
 @pytest.mark.parametrize("case", CASES)
 @pytest.mark.parametrize("roll", [0.0, 0.07])
 def test_zero_backlash_line_contact_in_pair_frame(case, roll):
-    """docs/theory/gearing.md, Eqs. (M1)-(M8): the contact line lies where det[r, n, p] = 0, phi* = +-acos(tan d1/tan g1) - (phi1 + rotation).
+    """docs/theory/gearing.md, Eqs. (M1)-(M8): the contact line lies where det[r, n, p] = 0, phi* = +-acos(tan d1/tan
+    g1) - (phi1 + rotation).
 
     Mapped into the gear frame, those pinion points must lie exactly on the mating gear flank (pinion concave <->
     gear convex), with opposite outward normals, up to a whole number of gear pitches: this checks recipe, phasing and
     thickness (zero backlash) together.
     """
-    z1, z2 = case[0], case[1]
+    z2 = case[1]
     p = _pair(*case)
     d1, g1 = p.pinion.base_cone_angle, p.pinion.pitch_angle
     for side in Side:
@@ -213,7 +216,8 @@ def test_bad_input_is_design_error(kw, field):
 
 def test_profile_inflection_near_crown_gear_is_rejected():
     """A 12/31 pair at S = 105 deg has a gear pitch angle near 80 deg: on the gear concave flank |psi - beta| passes
-    90 deg, where k1 = cos(psi - beta)/(rho |sin psi|) changes sign (outside the region verified in docs/theory/logspiral.md, Eq. (S9) (#flank-types))."""
+    90 deg, where k1 = cos(psi - beta)/(rho |sin psi|) changes sign (outside the region verified in
+    docs/theory/logspiral.md, Eq. (S9) (#flank-types))."""
     with pytest.raises(GeometryError, match=r"gear concave flank: \|psi - beta\| reaches 1\d\d\.\d{4} deg"):
         _pair(12, 31, 105.0, 20.0, 25.0, Hand.RIGHT)
 

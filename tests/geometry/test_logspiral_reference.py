@@ -1,8 +1,11 @@
-"""Reference values P1-P4 of docs/theory/logspiral.md#reference-values (rho0 = 100 mm, delta = 20 deg, beta = 35 deg), both branches.
+"""Reference values P1-P4 of docs/theory/logspiral.md#reference-values (rho0 = 100 mm, delta = 20 deg, beta = 35 deg),
+both branches.
 
-Oracle: column (B) of docs/theory/logspiral.md#reference-values -- the raw seed 000 Eq. (16) differentiated by mpmath at 50 digits, n oriented
+Oracle: column (B) of docs/theory/logspiral.md#reference-values -- the raw seed 000 Eq. (16) differentiated by mpmath at
+50 digits, n oriented
 like the corrected Eq. (21), curvatures 'bend toward n' (papers' convention). Tolerance: 1e-11 relative for the
-closed forms (docs/theory/logspiral.md#reference-values recommends rtol ~ 1e-11 against (B)); the generic numerical module (Richardson central
+closed forms (docs/theory/logspiral.md#reference-values recommends rtol ~ 1e-11 against (B)); the generic numerical
+module (Richardson central
 differences) is held to 1e-8 relative on curvatures (task requirement; measured ~1e-10).
 """
 
@@ -53,11 +56,12 @@ def test_core_kernel_matches_reference(name):
 
 @pytest.mark.parametrize("name", sorted(REF))
 def test_public_flank_matches_reference_converted(name):
-    """Public conventions: n_out = sign(psi) n, L_out = -sign(psi) L, k_reported = -sign(psi) k (docs/conventions.md)."""
+    """Public conventions: n_out = sign(psi) n, L_out = -sign(psi) L, k_reported = -sign(psi) k
+    (docs/conventions.md)."""
     (vp, ph), r, n, E, G, L, N, k1, k2 = REF[name]
     g = LogSpiralFlank(RHO0, DELTA, BETA).evaluate(vp, ph)
     s = np.sign(g.psi)
-    assert s == (1 if name != "P4" else -1)  # P1-P3 convex branch, P4 concave branch (docs/theory/logspiral.md#reference-values)
+    assert s == (1 if name != "P4" else -1)  # P1-P3 convex, P4 concave (docs/theory/logspiral.md#reference-values)
     assert _rel(g.point, r) < RTOL
     assert np.max(np.abs(g.normal - s * np.asarray(n))) < RTOL
     assert _rel(g.E, E) < RTOL and _rel(g.G, G) < RTOL
@@ -71,7 +75,8 @@ def test_generic_numerical_module_matches_reference(name):
     (vp, ph), r, n, E, G, L, N, k1, k2 = REF[name]
     flank = LogSpiralFlank(RHO0, DELTA, BETA)
     s = -1.0 if name == "P4" else 1.0
-    # orientation of the normal n of docs/theory/logspiral.md, Eqs. (S4), (S9): n = sign(sin psi sin beta) unit(r_varphi x r_phi) (docs/theory/logspiral.md, Eq. (S4))
+    # orientation of the normal n of docs/theory/logspiral.md, Eqs. (S4), (S9): n = sign(sin psi sin beta) unit(r_varphi
+    # x r_phi) (docs/theory/logspiral.md, Eq. (S4))
     g = surface_geometry(flank.point, vp, ph, normal_sign=s)
     assert np.max(np.abs(g.normal - n)) < 1e-10
     assert _rel(g.E, E) < 1e-10 and _rel(g.G, G) < 1e-10

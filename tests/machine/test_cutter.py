@@ -1,4 +1,5 @@
-"""Head cutter (seed 001 Eqs. (7)-(10), docs/theory/generation.md, Eqs. (G1)-(G3)): normals, fillet junction, principal curvatures, validation."""
+"""Head cutter (seed 001 Eqs. (7)-(10), docs/theory/generation.md, Eqs. (G1)-(G3)): normals, fillet junction, principal
+curvatures, validation."""
 
 import math
 
@@ -52,7 +53,8 @@ def test_straight_and_fillet_match_printed_equations(blade):
 @pytest.mark.parametrize("blade", list(Blade))
 @pytest.mark.parametrize("rp", [math.inf, 250.0])
 def test_normals_are_normalised_cross_products(blade, rp):
-    # Eqs. (9)-(10): n_h = r_u x r_theta / |.| (docs/theory/generation.md#head-cutter: derivative of the fillet w.r.t. lambda)
+    # Eqs. (9)-(10): n_h = r_u x r_theta / |.| (docs/theory/generation.md#head-cutter: derivative of the fillet w.r.t.
+    # lambda)
     c = _cutter(blade, rp)
     u0, uj = c.fillet_range
     u = np.array([u0 + 0.2, 0.5 * (u0 + uj), uj + 0.3, uj + 5.0])

@@ -40,7 +40,8 @@ def test_frozen():
 
 
 def test_pitch_angle_reference_23_65():
-    # docs/theory/logspiral.md, Eq. (S2) (#surface) design example: Z 23/65, S = 90 deg -> g1 = 19.4861295725 deg (10 digits printed)
+    # docs/theory/logspiral.md, Eq. (S2) (#surface) design example: Z 23/65, S = 90 deg -> g1 = 19.4861295725 deg (10
+    # digits printed)
     kin = BevelPairKinematics(np.pi / 2, 23, 65)
     assert np.degrees(kin.pitch_angle_pinion) == pytest.approx(19.4861295725, abs=1e-10)
 
@@ -115,7 +116,8 @@ def test_velocity_form_equals_willis_form(shaft, z1, z2, phi1, xs):
     n = np.array(xs[3:]) + np.array([0.3, -0.2, 1.0])
     n = n / np.linalg.norm(n)
     g1, g2 = kin.pitch_angle_pinion, kin.pitch_angle_gear
-    # n . v(12) with v(12) = v(1) - v(2) built from the member velocities (seed 002 Eqs. 7-9, docs/theory/gearing.md#conjugacy)
+    # n . v(12) with v(12) = v(1) - v(2) built from the member velocities (seed 002 Eqs. 7-9,
+    # docs/theory/gearing.md#conjugacy)
     v1 = np.cross(kin.angular_velocity_pinion(2.0), r)
     v2 = np.cross(kin.angular_velocity_gear(2.0), r)
     lhs = np.dot(n, v1 - v2)

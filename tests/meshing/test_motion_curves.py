@@ -1,4 +1,5 @@
-"""Motion curves and the predesigned combined motion curve of seed 001 §2 (Eqs. (1)-(6); docs/theory/tca.md, Eqs. (T1)-(T4); docs/theory/example.md#table-2)."""
+"""Motion curves and the predesigned combined motion curve of seed 001 §2 (Eqs. (1)-(6); docs/theory/tca.md, Eqs.
+(T1)-(T4); docs/theory/example.md#table-2)."""
 
 import numpy as np
 import pytest

@@ -2,7 +2,8 @@
 
 Same surface as :mod:`spiralbevel._core.logspiral` (seed 000 Eq. (16), docs/theory/logspiral.md, Eq. (S2)), but:
 
-* the normal is the **outward** normal n_out = sign(psi) n (docs/theory/logspiral.md, Eq. (S9) (#flank-types)), n the corrected Eq. (21);
+* the normal is the **outward** normal n_out = sign(psi) n (docs/theory/logspiral.md, Eq. (S9) (#flank-types)), n the
+  corrected Eq. (21);
 * L, M, N are taken with the sign convention II = dr . dn_out (i.e. L = -r_uu . n_out), so that the eigenvalues of
   I^-1 II are the reported curvatures, **convex = positive** (docs/conventions.md);
 * e1 = r_varphi/|r_varphi| = sign(psi) m, e2 = cos(psi-beta) t + sin(psi-beta) w (toe -> heel, e2 . r > 0), and

@@ -20,7 +20,7 @@ Numerical Optimization, 2nd ed., Alg. 16.3), which terminates finitely for a str
 from __future__ import annotations
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve, LinAlgError
+from scipy.linalg import cho_factor, cho_solve
 
 __all__ = [
     "rect_integral",

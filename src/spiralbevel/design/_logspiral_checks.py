@@ -75,7 +75,8 @@ def check_boundaries(name, b, pitch_angle):
 
 
 def check_root_outside_base(name, root_angle, delta):
-    """The flank exists only outside the base cone (docs/theory/logspiral.md#singular-edge): root_angle > base_cone_angle."""
+    """The flank exists only outside the base cone (docs/theory/logspiral.md#singular-edge): root_angle >
+    base_cone_angle."""
     if not root_angle > delta:
         raise GeometryError.single(
             f"{name}.root_angle", root_angle, f"value > base cone angle = {delta:.10g}", "rad",
@@ -85,7 +86,8 @@ def check_root_outside_base(name, root_angle, delta):
 
 
 def check_outward_rule(name, psi_range, beta):
-    """Keep |psi - beta| < pi/2 over the domain, the region verified in docs/theory/logspiral.md, Eq. (S9) (#flank-types) (n_out = sign(psi) n there).
+    """Keep |psi - beta| < pi/2 over the domain, the region verified in docs/theory/logspiral.md, Eq. (S9)
+    (#flank-types) (n_out = sign(psi) n there).
 
     Beyond it the profile curvature k1 = cos(psi - beta)/(rho |sin psi|) changes sign (profile inflection).
     """
@@ -93,4 +95,5 @@ def check_outward_rule(name, psi_range, beta):
     if not worst < np.pi / 2:
         raise GeometryError(f"{name}: |psi - beta| reaches {worst * DEG:.4f} deg >= 90 deg on the flank domain, so the "
                             "involute profile has an inflection (k1 = cos(psi - beta)/(rho |sin psi|) changes sign; "
-                            "docs/theory/logspiral.md, Eq. (S9) (#flank-types) verifies |psi - beta| < 90 deg): lower the face angle or the pitch angle")
+                            "docs/theory/logspiral.md, Eq. (S9) (#flank-types) verifies |psi - beta| < 90 deg): "
+                            "lower the face angle or the pitch angle")

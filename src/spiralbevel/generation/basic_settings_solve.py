@@ -5,7 +5,8 @@ generated root line lies on the root cone along the whole face width, and two un
 with a finite-difference Jacobian of the *generated* flank (``generate_flank`` + ``ToothFlank.mean_point``, i.e. the
 equation of meshing and ``locate``): the blade angle alpha_h and the machine spiral angle beta' (direction of the cutter
 centre from the mean root point) such that, at the mean pitch point, the normal pressure angle equals the design value
-(alpha_nD or alpha_nC of ISO 23509) and the spiral angle equals beta_m. With a given (fixed) cutter only beta' is solved.
+(alpha_nD or alpha_nC of ISO 23509) and the spiral angle equals beta_m. With a given (fixed) cutter only beta' is
+solved.
 
 Settings of the family (``spiralbevel.machine.basic_settings``; docs/conventions.md, "Basic settings that hit the
 design"):

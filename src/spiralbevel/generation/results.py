@@ -71,7 +71,8 @@ class MeanPoint:
     spiral_angle : float, rad
         Angle between the tooth trace on the cone of pitch angle through the point and that cone's generatrix (>= 0).
     pressure_angle : float, rad
-        Normal pressure angle w.r.t. the pitch cone: asin|n . N_pitch| (docs/theory/logspiral.md, Eqs. (S10)-(S11) (#cones)).
+        Normal pressure angle w.r.t. the pitch cone: asin|n . N_pitch| (docs/theory/logspiral.md, Eqs. (S10)-(S11)
+        (#cones)).
     pressure_angle_root : float, rad
         Same, measured against a cone of root angle through the point (the cradle plane of generation).
     hand_sign : int

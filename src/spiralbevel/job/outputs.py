@@ -82,7 +82,8 @@ def meshing_pair_3d(pair, grids, out: Path) -> str:
     surfaces = [(lab if lab else "_", p, c) for lab, p, c in surfaces]
     # look down the pitch line from beyond the heel: the tooth's cross-section between the two gear teeth
     elev = 90.0 - math.degrees(pair.pinion.pitch_angle)
-    return save_figure(plot_surfaces_3d(surfaces, title="Meshing tooth pair (pair frame, zero roll), seen from the heel",
+    return save_figure(plot_surfaces_3d(surfaces, title="Meshing tooth pair (pair frame, zero roll), "
+                                                  "seen from the heel",
                                         elev=elev, azim=0.0), out / "meshing_pair_3d.png")
 
 

@@ -95,14 +95,16 @@ def check_flank(flank: FlankLike, domain) -> FlankParams:
         problems.append(Problem("domain.psi_max", d.psi_max, f"> psi_min = {d.psi_min!r}", "rad"))
     elif d.psi_min <= 0 <= d.psi_max:
         problems.append(Problem("domain.psi_min", d.psi_min, "psi_min > 0 or psi_max < 0", "rad",
-                                "psi = 0 is the singular (cuspidal) edge of the flank, docs/theory/logspiral.md#singular-edge"))
+                                "psi = 0 is the singular (cuspidal) edge of the flank, "
+                                "docs/theory/logspiral.md#singular-edge"))
     if not math.isclose(float(d.base_cone_angle), delta, rel_tol=1e-12, abs_tol=0.0):
         problems.append(Problem("domain.base_cone_angle", d.base_cone_angle, f"= flank.base_cone_angle = {delta!r}",
                                 "rad", "the domain belongs to another flank"))
     if not problems and max(abs(d.psi_min - beta), abs(d.psi_max - beta)) >= math.pi / 2:
         problems.append(Problem("domain.psi_min/psi_max", (d.psi_min, d.psi_max),
                                 f"|psi - beta| < pi/2 with beta = {beta!r}", "rad",
-                                "outside it n_out = sign(psi) n is not the outward normal, docs/theory/logspiral.md, Eq. (S9)"))
+                                "outside it n_out = sign(psi) n is not the outward normal, "
+                                "docs/theory/logspiral.md, Eq. (S9)"))
     if problems:
         raise DesignError(problems)
     psi_sign = 1 if d.psi_min > 0 else -1
@@ -129,7 +131,8 @@ def outward_geometry(varphi, phi, p: FlankParams) -> dict:
 
     Notes
     -----
-    n_out = sign(psi) n (docs/theory/logspiral.md, Eq. (S9) (#flank-types)). The kernel's k is positive when the surface bends toward n, so the
+    n_out = sign(psi) n (docs/theory/logspiral.md, Eq. (S9) (#flank-types)). The kernel's k is positive when the surface
+    bends toward n, so the
     convex-positive curvature of docs/conventions.md is kappa = -sign(psi) k. e1 is flipped with n (e1_out =
     sign(psi) m) so that e1 x e2 = n_out holds with the kernel's e2.
     """

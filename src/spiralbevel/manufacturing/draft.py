@@ -1,4 +1,5 @@
-"""Forging draft of a log-spiral flank: where can the forged part leave the die? (seed 000 §5.1, docs/theory/logspiral.md, Eq. (S13))
+"""Forging draft of a log-spiral flank: where can the forged part leave the die? (seed 000 §5.1,
+docs/theory/logspiral.md, Eq. (S13))
 
 The part moves along the unit die direction v_d relative to the die. A flank point can be released without damage
 when its outward normal does not face the motion, n_out · v_d ≤ 0 (seed 000 Eq. (38) with the outward normal).
@@ -218,7 +219,8 @@ def draft_map(flank: FlankLike, domain, die_direction=(0.0, 0.0, 1.0), n_phi: in
 
     Notes
     -----
-    seed 000 Eq. (38) with the outward normal n_out = sign(psi) n (docs/theory/logspiral.md, Eqs. (S9), (S13)): a point is draftable
+    seed 000 Eq. (38) with the outward normal n_out = sign(psi) n (docs/theory/logspiral.md, Eqs. (S9), (S13)): a point
+    is draftable
     iff n_out · v_d <= 0. The failing area is the integral of the area element
     dA = sqrt(EG - F^2) dvarphi dphi = rho^2 |sin psi| cos(delta)/|sin beta| dpsi dphi over {n_out · v_d > 0}: each
     grid cell is split into two triangles, n_out·v_d and dA are interpolated linearly and the positive part is

@@ -1,4 +1,5 @@
-"""The contact system of TCA for one assembled pair: seed 001 Eq. (16) (docs/theory/tca.md, Eq. (T5)) in the pair frame of
+"""The contact system of TCA for one assembled pair: seed 001 Eq. (16) (docs/theory/tca.md, Eq. (T5)) in the pair frame
+of
 docs/conventions.md, batched over pinion rotations and tooth pairs.
 
 Tooth pair k is pinion tooth k (the reference flank turned by +2 pi k / z1 about the pinion axis) against gear tooth

@@ -3,7 +3,8 @@
 Given any parametric surface of member 1 (the pinion) and the pair kinematics, the solver finds
 
 * for each surface point (u, v) the pinion rotation phi1 at which it is a contact point (the equation of meshing
-  f(u, v, phi1) = (r1 x n1) . R(a1, -phi1) p = 0, docs/theory/gearing.md, Eq. (M5)), and the conjugate point and normal on member 2 in
+  f(u, v, phi1) = (r1 x n1) . R(a1, -phi1) p = 0, docs/theory/gearing.md, Eq. (M5)), and the conjugate point and normal
+  on member 2 in
   the gear member frame, r2 = R_y(-S) R(a2, (z1/z2) phi1) R(a1, phi1) r1 (:func:`solve_envelope`);
 * the instantaneous contact line at a given phi1: for each u, the v with f(u, v, phi1) = 0
   (:func:`solve_contact_line`).
@@ -159,7 +160,8 @@ def solve_envelope(surface: Surface, kinematics: BevelPairKinematics, u, v, *, b
     Notes
     -----
     For constant-ratio rotation about a1 the meshing function is exactly f = A cos phi1 + B sin phi1 + C with
-    (A, B, C) from q = r1 x n1 (docs/theory/gearing.md, Eq. (M5)), so both roots are found in closed form for all points at once and then
+    (A, B, C) from q = r1 x n1 (docs/theory/gearing.md, Eq. (M5)), so both roots are found in closed form for all points
+    at once and then
     polished by two vectorized Newton steps with the analytic derivative; the residual is re-evaluated with the
     rotation-matrix form of f.
     """

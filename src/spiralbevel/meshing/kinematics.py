@@ -1,4 +1,5 @@
-"""Kinematics of a bevel pair with intersecting axes (seed 002, corrected in docs/theory/gearing.md, Eqs. (M1)-(M2); docs/conventions.md).
+"""Kinematics of a bevel pair with intersecting axes (seed 002, corrected in docs/theory/gearing.md, Eqs. (M1)-(M2);
+docs/conventions.md).
 
 Fixed frame with the common apex O. Pinion axis a1 = (0, 0, 1), gear axis a2 = (sin S, 0, cos S), both pointing from
 O into the bodies (S = shaft angle). The pinion turns by phi1 about a1, the gear by phi2 = -(z1/z2) phi1 about a2, so
@@ -127,7 +128,8 @@ class BevelPairKinematics:
 
     # ----------------------------------------------------------------------------------------- meshing equation
     def meshing_velocity_form(self, r, n, omega1=1.0):
-        """n . v(12) at fixed-frame points and normals, mm/s (seed 002 Eq. (15), docs/theory/gearing.md, Eqs. (M2)-(M4))."""
+        """n . v(12) at fixed-frame points and normals, mm/s (seed 002 Eq. (15), docs/theory/gearing.md, Eqs.
+        (M2)-(M4))."""
         return np.einsum("...i,...i->...", np.asarray(n, float), self.relative_velocity(r, omega1))
 
     def meshing_willis_form(self, r, n):

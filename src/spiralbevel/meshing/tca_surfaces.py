@@ -42,7 +42,8 @@ class LogSpiralSurface:
 
     Notes
     -----
-    Outward normal n_out = sign(psi) n with n of docs/theory/logspiral.md, Eq. (S4); derivatives analytic (Eqs. (S3)-(S8)):
+    Outward normal n_out = sign(psi) n with n of docs/theory/logspiral.md, Eq. (S4); derivatives analytic (Eqs.
+    (S3)-(S8)):
     n_varphi = cos(delta) cos(psi - beta) m, n_phi = sin(delta) [cos(psi - beta) t + sin(psi - beta) w].
     """
 
@@ -61,11 +62,13 @@ class LogSpiralSurface:
                                      "rho0 > 0, 0 < delta < pi/2, 0 < |beta| < pi/2", "mm, rad, rad")
         if self.psi_range is not None and self.psi_range[0] * self.psi_range[1] <= 0:
             raise GeometryError.single("psi_range", self.psi_range, "an interval not containing 0", "rad",
-                                       "psi = 0 is the singular (cuspidal) edge, docs/theory/logspiral.md#singular-edge")
+                                       "psi = 0 is the singular (cuspidal) edge, "
+                                       "docs/theory/logspiral.md#singular-edge")
         object.__setattr__(self, "_R", rot_z(self.azimuth))
 
     def _kernel(self, params, deriv):
-        """Lean evaluation of seed 000 Eq. (16) and docs/theory/logspiral.md, Eqs. (S3)-(S8): r, n_out and optionally dr, dn."""
+        """Lean evaluation of seed 000 Eq. (16) and docs/theory/logspiral.md, Eqs. (S3)-(S8): r, n_out and optionally
+        dr, dn."""
         p = np.asarray(params, float)
         vphi, phi = p[..., 0], p[..., 1]
         d, b = self.delta, self.beta
@@ -223,9 +226,11 @@ def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressur
 
     Notes
     -----
-    Recipe (docs/theory/logspiral.md, Eq. (S12)): tan g1 = sin S / (z2/z1 + cos S), tan a_t = tan a_n / cos b_m, sin d_i = sin g_i cos a_t,
+    Recipe (docs/theory/logspiral.md, Eq. (S12)): tan g1 = sin S / (z2/z1 + cos S), tan a_t = tan a_n / cos b_m, sin d_i
+    = sin g_i cos a_t,
     sin beta = cos a_n sin b_m. The gear flank has base cone d2, spiral parameter -beta and is phased (azimuth) so
-    that both flanks pass through the pitch point A_m p with opposite outward normals (docs/theory/gearing.md, Eq. (M8), #conjugacy).
+    that both flanks pass through the pitch point A_m p with opposite outward normals (docs/theory/gearing.md, Eq. (M8),
+    #conjugacy).
     """
     S = float(shaft_angle)
     g1, g2, _, d1, d2, beta = pair_recipe(z1, z2, S, normal_pressure_angle, spiral_angle)

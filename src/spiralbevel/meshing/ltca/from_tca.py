@@ -19,7 +19,8 @@ For every mesh position i and tooth pair k of the TCA (pinion tooth k against ge
   gear tooth k is turned by -2 pi k/z2).
 
 The LTCA driver then adds w_i = w_sep - te_k h_i with the lever arms h_i = ((q_i - o2) x n) . a2 (seed 001 Eq. (18),
-docs/theory/ltca.md, Eqs. (L1)-(L4)). Potential contact points whose foot lies off a loaded flank grid are dropped, so edge
+docs/theory/ltca.md, Eqs. (L1)-(L4)). Potential contact points whose foot lies off a loaded flank grid are dropped, so
+edge
 contact of the TCA (extended surfaces) becomes contact along the flank edge.
 """
 

@@ -5,7 +5,8 @@ unloaded contact point and common normal in the pair frame, the major-axis direc
 pair's unloaded transmission error, the relative curvature (or an exact separation function), and the poses that map
 pair-frame points to the member frames of pinion and gear (reference tooth) with the FE tooth index of the pair.
 
-Per position (seed 001 Eq. (18), docs/theory/ltca.md, Eqs. (L1)-(L4)): potential contact points on a regular grid of the common
+Per position (seed 001 Eq. (18), docs/theory/ltca.md, Eqs. (L1)-(L4)): potential contact points on a regular grid of the
+common
 tangent plane of each pair; lever arms h_i = ((q_i - o2) x n) . a2 about the gear axis; initial separations
 w_i = w_sep(s, t) - te_pair h_i, so the gear lag dtheta that closes pair k first is -te_k and the loaded transmission
 error is -dtheta; flexibility C = C_FE,pinion + C_FE,gear + C_halfspace (the last within each pair only, its cells
@@ -32,7 +33,7 @@ __all__ = ["PairContact", "ContactPosition", "run_ltca", "torque_for_approach", 
 
 log = logging.getLogger(__name__)
 
-APPROACH_TARGET = 0.00635  # mm, Gleason's 0.00025 in rule (seed 001 §4.3.2, docs/theory/ltca.md, Eq. (L6) / docs/theory/tca.md, Eq. (T6))
+APPROACH_TARGET = 0.00635  # mm, Gleason's 0.00025 in rule (seed 001 §4.3.2, docs/theory/ltca.md, Eq. (L6))
 
 
 @dataclass(frozen=True)
@@ -264,7 +265,8 @@ def run_ltca(positions: Sequence[ContactPosition], torque: float, pinion_complia
              grid=(21, 7), half_length=8.0, half_width=0.8, material_pinion: Material = STEEL,
              material_gear: Material = STEEL, mean_position: int | None = None,
              approach_target: float | None = APPROACH_TARGET) -> LTCAResult:
-    """Loaded tooth contact analysis over mesh positions (seed 001 §4.3.2, Eq. (18); docs/theory/ltca.md, Eqs. (L1)-(L4)).
+    """Loaded tooth contact analysis over mesh positions (seed 001 §4.3.2, Eq. (18); docs/theory/ltca.md, Eqs.
+    (L1)-(L4)).
 
     Parameters
     ----------

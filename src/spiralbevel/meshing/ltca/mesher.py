@@ -118,14 +118,16 @@ def mesh_tooth_segment(convex, concave, z, n_teeth=3, thickness_divisions=2, spa
             raise DesignError.single(name, v, f"integer >= {lo}", "-", "tooth segment mesh")
     nf, npf = cv.shape[:2]
     pitch = 2 * np.pi / z
-    ang = lambda g: np.angle(np.mean(np.exp(1j * np.arctan2(g[..., 1], g[..., 0]))))
-    lo_side, hi_side = ("convex", "concave") if np.angle(np.exp(1j * (ang(cc) - ang(cv)))) > 0 else ("concave", "convex")
+    def ang(g):
+        return np.angle(np.mean(np.exp(1j * np.arctan2(g[..., 1], g[..., 0]))))
+    turn = np.angle(np.exp(1j * (ang(cc) - ang(cv))))
+    lo_side, hi_side = ("convex", "concave") if turn > 0 else ("concave", "convex")
     low, high = (cv, cc) if lo_side == "convex" else (cc, cv)
     ks = list(range(-((n_teeth - 1) // 2), n_teeth // 2 + 1))
     nt, ns, nr = thickness_divisions, space_divisions, rim_layers
     tau_t = np.linspace(0, 1, nt + 1)
     # angular columns: (tooth id or -1, column points at every profile level or root only)
-    cols_root, tooth_of_col, col_side = [], [], []
+    cols_root, tooth_of_col = [], []
     tooth_cols = {}
     for m, k in enumerate(ks):
         L, H = _rotz(low, k * pitch), _rotz(high, k * pitch)
@@ -146,7 +148,7 @@ def mesh_tooth_segment(convex, concave, z, n_teeth=3, thickness_divisions=2, spa
     nV = nr + npf
     X = np.full((nf, Na, nV, 3), np.nan)
     X[:, :, nr] = root
-    for k, (first, L, H) in tooth_cols.items():
+    for first, L, H in tooth_cols.values():
         for c, tau in enumerate(tau_t):
             X[:, first + c, nr:] = (1 - tau) * L + tau * H
     if nr > 0:
