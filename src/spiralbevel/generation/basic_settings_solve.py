@@ -80,7 +80,7 @@ def root_deviation(flank) -> tuple:
     # the arc angle 0.02 rad from the tip instead: it lies rho_h (1 - cos 0.02) = 2e-4 rho_h above the tip plane,
     # below 1e-3 mm for any edge radius up to 5 mm
     u = flank.generator.cp["u_min"] + 0.02 * flank.cutter.edge_radius
-    out = []
+    out: list[float | None] = []
     for R in (ol.Ri, ol.Rm, ol.Re):
         try:
             x = flank._locator.at_R_u(np.array([R]), np.array([u]))

@@ -268,7 +268,7 @@ def write_step(path: "str | os.PathLike[str]", convex, concave, *, z: int | None
     volume = None
     if solid:
         scale = float(np.ptp(np.concatenate([pa, pb]).reshape(-1, 3), axis=0).max())
-        shape, volume = _tooth_solid(occ, *surfaces, tol=max(1e-6, 1e-7 * scale))
+        shape, volume = _tooth_solid(occ, *surfaces, tol=max(1e-6, 1e-7 * scale))  # type: ignore[misc]  # two flanks
         if shape is not None:
             builder.Add(compound, shape)
             n_faces += 6

@@ -41,7 +41,8 @@ def curvature_domain_maps(pair, grids, out: Path) -> str:
     """PNG of k1 and k2 of every log-spiral flank over its parameter domain (the parallelogram in (varphi, phi))."""
     from ..viz.flank_maps import plot_domain_fields
 
-    k1, k2 = [], []
+    k1: list[tuple] = []
+    k2: list[tuple] = []
     for (m, s), g in grids.items():
         sf = pair.flank(m, s).surface
         phi = sf.phi_of_rho(np.asarray(g.rho))

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Protocol, TypeGuard
 
 import numpy as np
 
@@ -51,7 +51,7 @@ class FlankParams:
     side: Side
 
 
-def _finite(x) -> bool:
+def _finite(x) -> TypeGuard[float]:
     try:
         return math.isfinite(float(x))
     except (TypeError, ValueError):
@@ -87,7 +87,7 @@ def check_flank(flank: FlankLike, domain) -> FlankParams:
             problems.append(Problem(f"domain.{name}", getattr(domain, name, None), "a finite number", "rad"))
     if problems:
         raise DesignError(problems)
-    rho0, delta, beta = float(rho0), float(delta), float(beta)
+    rho0, delta, beta = float(rho0), float(delta), float(beta)  # type: ignore[arg-type]  # finite: checked above
     d = domain
     if not d.phi_min < d.phi_max:
         problems.append(Problem("domain.phi_max", d.phi_max, f"> phi_min = {d.phi_min!r}", "rad"))

@@ -351,7 +351,8 @@ def plan_toolpath(flank: FlankLike, domain, tool_radius: float, scallop_height: 
     _gouge_check(p, psi_lo, psi_hi, domain, R)
     _scallop_limit_check(p, psi_lo, psi_hi, domain, R, h)
     varphis = _march(p, psi_lo, psi_hi, domain, R, h, int(max_paths))
-    paths, kept = [], []
+    paths: list = []
+    kept: list = []
     for vphi in varphis:
         path = _make_path(vphi, p, psi_lo, psi_hi, domain, R, lead, tilt, max_segment, zigzag and len(paths) % 2)
         if path is not None:

@@ -57,7 +57,7 @@ class ContactProblem:
         if problems:
             raise DesignError(problems)
         self.pinion, self.gear = pinion, gear
-        self.z1, self.z2, self.shaft_angle = int(kinematics.z1), int(kinematics.z2), float(s)
+        self.z1, self.z2, self.shaft_angle = int(kinematics.z1), int(kinematics.z2), float(s)  # type: ignore[arg-type]
         self.misalignment = misalignment if misalignment is not None else Misalignment()
         self.axes = self.misalignment.axes(self.shaft_angle)
         if scale is None:

@@ -9,6 +9,7 @@ spiral parameter -beta) is in line contact with zero transmission error; a crown
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -176,8 +177,9 @@ class LogSpiralSurface:
         return self.evaluate(self.params_of(psi, phi))[0]
 
     def with_changes(self, **kw) -> "LogSpiralSurface":
-        d = dict(rho0=self.rho0, delta=self.delta, beta=self.beta, azimuth=self.azimuth, psi_range=self.psi_range,
-                 phi_range=self.phi_range, reference_params=self.reference_params)
+        d: dict[str, Any] = dict(rho0=self.rho0, delta=self.delta, beta=self.beta, azimuth=self.azimuth,
+                                 psi_range=self.psi_range, phi_range=self.phi_range,
+                                 reference_params=self.reference_params)
         d.update(kw)
         return LogSpiralSurface(**d)
 
@@ -248,6 +250,7 @@ def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressur
         err = np.linalg.norm(r - target)
         if best is None or err < best[0]:
             best = (err, vphi, phi, rho0)
+    assert best is not None  # the scan above evaluates at least one candidate
     err, vphi1, phi1m, rho01 = best
     if err > 1e-9 * Am:
         raise GeometryError.single("pitch point", err, "< 1e-9 A_m", "mm", "pinion flank misses the pitch point")
@@ -281,6 +284,7 @@ def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressur
         miss = np.linalg.norm(Rz @ r0 - r2) + np.linalg.norm(Rz @ n0 - n2_target)
         if best is None or miss < best[0]:
             best = (miss, psi2, q, tau)
+    assert best is not None  # the scan above evaluates at least one candidate
     miss, psi2, q2, tau = best
     if miss > 1e-9:
         raise GeometryError.single("gear phasing", miss, "< 1e-9", "mm", "no conjugate gear flank through the "

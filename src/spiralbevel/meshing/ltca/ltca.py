@@ -308,7 +308,8 @@ def run_ltca(positions: Sequence[ContactPosition], torque: float, pinion_complia
     n_pairs = max(len(p.pairs) for p in positions)
     ns, nt = grid
     cell_state = np.zeros(n_pairs * ns * nt, bool)
-    out = {k: [] for k in ("dtheta", "dtheta0", "share", "pf", "pmax", "pts", "pair", "F", "p", "x1", "x2", "te")}
+    out: dict[str, list] = {
+        k: [] for k in ("dtheta", "dtheta0", "share", "pf", "pmax", "pts", "pair", "F", "p", "x1", "x2", "te")}
     for k, pos in enumerate(positions):
         sysk = _assemble(k, pos, pinion_compliance, gear_compliance, a2, o2, grid, half_length, half_width, estar)
         warm = cell_state[sysk.flat]

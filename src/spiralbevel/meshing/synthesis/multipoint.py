@@ -33,6 +33,7 @@ import numbers
 import time
 from dataclasses import dataclass
 from types import SimpleNamespace
+from typing import Any
 
 import numpy as np
 
@@ -97,7 +98,7 @@ class MultiPointResult:
     elapsed : float, s
     """
 
-    synthesis: object
+    synthesis: Any
     cmc: object
     control_points: np.ndarray
     mean_index: int
