@@ -230,3 +230,19 @@ def test_gear_input_errors(kwargs, exc, field):
     a, b = tooth(n=5, m=4)
     with pytest.raises(exc, match=field):
         gear_mesh(a, b, **kwargs)
+
+
+def test_root_slot_width_closed_form():
+    """Root edge of the test tooth at psi = 0.05: convex azimuth phi + f(psi), concave phi - f(psi) + Delta (seed 000
+    Eq. (16)), so the tooth space at the root spans 2 pi / z - (Delta - 2 f(psi)) radians, on the root circle of the
+    leading (concave) edge; negative when the teeth overlap."""
+    from spiralbevel.geometry.solid import root_slot_width
+
+    (pa, _), (pb, _) = tooth(n=9, m=5)
+    r = np.hypot(pb[:, 0, 0], pb[:, 0, 1])
+    for z in (12, 17, 30):
+        expected = (2.0 * np.pi / z - (0.35 - 2.0 * f(PSI[0]))) * r
+        assert np.allclose(root_slot_width(pa, pb, z), expected, rtol=0, atol=1e-12)
+    assert np.all(root_slot_width(pa, pb, 30) < 0)  # 30 teeth of 0.3 rad at the root cannot fit
+    with pytest.raises(DesignError, match="z"):
+        root_slot_width(pa, pb, 0)

@@ -35,7 +35,8 @@ from spiralbevel.geometry.surface_mesh import (
     zip_rungs,
 )
 
-__all__ = ["GearBody", "TriangleMesh", "tooth_mesh", "gear_mesh", "gear_body_mesh", "flank_grid"]
+__all__ = ["GearBody", "TriangleMesh", "tooth_mesh", "gear_mesh", "gear_body_mesh", "flank_grid", "root_slot_width",
+           "spherical_lerp"]
 
 _WELD_REL = 1e-9  # vertices closer than this fraction of the model size are the same vertex
 
@@ -102,7 +103,7 @@ def _spherical(p):
     return rho, np.arccos(np.clip(p[..., 2] / np.where(rho > 0, rho, 1.0), -1.0, 1.0)), np.arctan2(p[..., 1], p[..., 0])
 
 
-def _spherical_lerp(p, q, t):
+def spherical_lerp(p, q, t):
     """Points at fractions t (k,) between p and q (3,), linear in (rho, theta, alpha) about the apex.
 
     A rung between two points of one sphere stays on that sphere and one between two points of one cone about +z
@@ -130,7 +131,7 @@ class _Bridger:
         if key not in self._cache:
             p, q = (pu, pv) if u < v else (pv, pu)
             k = max(1, int(np.ceil(np.linalg.norm(q - p) / self.h)))
-            mid = self.builder.add_vertices(_spherical_lerp(p, q, np.linspace(0.0, 1.0, k + 1)[1:-1]))
+            mid = self.builder.add_vertices(spherical_lerp(p, q, np.linspace(0.0, 1.0, k + 1)[1:-1]))
             self._cache[key] = np.concatenate([[key[0]], mid, [key[1]]]).astype(np.int64)
         r = self._cache[key]
         return r if u == key[0] else r[::-1]
@@ -287,6 +288,41 @@ def _rotated_sectors(builder, br: _Bridger, pa, pb, na, nb, rots, b_leads) -> li
     return teeth
 
 
+def _leading(pa, pb) -> bool:
+    """True when the concave flank (b) leads, i.e. lies at the larger azimuth (counterclockwise about +z)."""
+    mid_a, mid_b = pa[pa.shape[0] // 2, pa.shape[1] // 2], pb[pb.shape[0] // 2, pb.shape[1] // 2]
+    return bool(_wrap(_azimuth(mid_b) - _azimuth(mid_a)) > 0)
+
+
+def root_slot_width(convex, concave, z: int) -> np.ndarray:
+    """Width of the tooth space at the root of a gear of z teeth, at each face station, mm.
+
+    The arc, on the circle about the axis through the leading root edge point of tooth 0, from that point to the
+    azimuth of the trailing root edge point of tooth 1 (same face station); negative where the root edges of
+    neighbouring teeth cross, i.e. where the teeth overlap at the root (a cutter wider than the tooth space).
+
+    Parameters
+    ----------
+    convex, concave : grid
+        Flank grids of one tooth (see :func:`tooth_mesh`), row 0 along axis 1 being the root edge.
+    z : int
+        Number of teeth (>= 1).
+
+    Returns
+    -------
+    (n_face,) float, mm
+    """
+    pa, _ = flank_grid(convex, "convex")
+    pb, _ = flank_grid(concave, "concave")
+    if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or z < 1:
+        raise DesignError.single("z", z, "integer >= 1", "-")
+    if pa.shape[0] != pb.shape[0]:
+        raise DesignError.single("concave.points", f"{pb.shape[0]} face stations", f"{pa.shape[0]} (as convex)", "-")
+    lead, trail = (pb[:, 0], pa[:, 0]) if _leading(pa, pb) else (pa[:, 0], pb[:, 0])
+    gap = _wrap(_azimuth(trail) + 2.0 * np.pi / z - _azimuth(lead))
+    return gap * np.hypot(lead[:, 0], lead[:, 1])
+
+
 def _gear(convex, concave, z, body: GearBody | None, teeth: bool) -> TriangleMesh:
     if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or z < 3:
         raise DesignError.single("z", z, "integer >= 3", "-")
@@ -296,8 +332,7 @@ def _gear(convex, concave, z, body: GearBody | None, teeth: bool) -> TriangleMes
     body = body or GearBody()
     # the leading flank lies at the larger azimuth (counterclockwise about +z); the root land runs from the leading
     # flank of tooth k to the trailing flank of tooth k+1
-    mid_a, mid_b = pa[pa.shape[0] // 2, pa.shape[1] // 2], pb[pb.shape[0] // 2, pb.shape[1] // 2]
-    b_leads = _wrap(_azimuth(mid_b) - _azimuth(mid_a)) > 0
+    b_leads = _leading(pa, pb)
     pitch = 2.0 * np.pi / z
     root_lead, root_trail = (pb[:, 0], pa[:, 0]) if b_leads else (pa[:, 0], pb[:, 0])
     root_width = max(_wrap(_azimuth(root_lead[[0, -1]]) - _azimuth(root_trail[[0, -1]])).max(), 0.0)

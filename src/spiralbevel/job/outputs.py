@@ -116,28 +116,86 @@ def transverse_section(pair, grids, out: Path) -> str:
     return save_figure(fig, out / "transverse_section.png")
 
 
-def stl_files(tooth_grids_by_member, teeth, out: Path) -> list[str]:
-    """STL of one tooth and of the whole gear for each member."""
+#: fillet rows of the CAD grids, cutter-tip line to fillet/blade junction: with 9 rows the B-spline fillet face stays
+#: within 5e-4 mm of the generated fillet (tests/io/test_step_generated.py)
+CAD_FILLET_ROWS = 9
+
+
+def cad_teeth(spec, blank, setups, n_face: int, n_profile: int) -> tuple[dict, list[str]]:
+    """Grids of one whole tooth per member for STL/STEP, the generated fillets included.
+
+    Returns ({member: {"tooth": (convex, concave), "fillet_rows": k, "gear": ..., "gear_fillet_rows": ...}},
+    warnings). Each grid is (points, normals) with rows 0..k on the fillet (row k the junction, held once). Where the
+    root edges of neighbouring teeth cross (the cutter is wider than the tooth space at the root), the warning names
+    the design-file key of the point width and the whole gear is built from the flanks above the fillets.
+    """
+    from ..geometry.solid import root_slot_width
+    from . import facemilled as fm
+
+    k = CAD_FILLET_ROWS
+    keep = np.r_[0:k - 1, k:k + n_profile]  # drop the blade's copy of the junction row
+    out, warnings = {}, []
+    for m in fm.MEMBERS:
+        grids = {}
+        for s in fm.SIDES:
+            g = setups[(m, s)].flank.grid(n_face, n_profile, n_fillet=k)
+            grids[s] = (g.points[:, keep], g.normals[:, keep])
+        rot = fm.tooth_rotation(blank, setups, m)
+        tooth = (grids[Side.CONVEX], fm.rotate_grid(*grids[Side.CONCAVE], rot))
+        z = int(blank.z1 if m is Member.PINION else blank.z2)
+        entry = {"tooth": tooth, "fillet_rows": k - 1, "gear": tooth, "gear_fillet_rows": k - 1}
+        width = float(root_slot_width(tooth[0][0], tooth[1][0], z).min())
+        if width <= 0.0:
+            keys = [f"face_milling.{m.value}_{s.value}.cutter.point_width" for s in fm.SIDES
+                    if getattr(spec.face_milling, f"{m.value}_{s.value}").cutter is not None]
+            key = " / ".join(keys) or "face_milling.point_width"
+            warnings.append(
+                f"{m.value}: the cutter does not fit the tooth space at the root (the root edges of neighbouring "
+                f"teeth cross by {-width:.3f} mm): reduce {key}; the whole {m.value} (STL, STEP) is built from the "
+                f"flanks above the fillets, the tooth files keep them")
+            blade = tuple((p[:, k - 1:], n[:, k - 1:]) for p, n in tooth)
+            entry.update(gear=blade, gear_fillet_rows=0)
+        out[m] = entry
+    return out, warnings
+
+
+def _cad(tooth_grids_by_member, cad):
+    if cad is not None:
+        return cad
+    return {m: {"tooth": t, "fillet_rows": 0, "gear": t, "gear_fillet_rows": 0}
+            for m, t in tooth_grids_by_member.items()}
+
+
+def stl_files(tooth_grids_by_member, teeth, out: Path, cad=None) -> list[str]:
+    """STL of one tooth and of the whole gear for each member (``cad``: :func:`cad_teeth`, with the fillets)."""
     from ..geometry.solid import gear_mesh, tooth_mesh
     from ..io.stl import write_stl
 
     names = []
-    for member, (convex, concave) in tooth_grids_by_member.items():
-        write_stl(out / f"{member.value}_tooth.stl", tooth_mesh(convex, concave), name=f"{member.value} tooth")
-        write_stl(out / f"{member.value}.stl", gear_mesh(convex, concave, teeth[member]), name=member.value)
+    for member, c in _cad(tooth_grids_by_member, cad).items():
+        write_stl(out / f"{member.value}_tooth.stl", tooth_mesh(*c["tooth"]), name=f"{member.value} tooth")
+        gear = gear_mesh(*c["gear"], teeth[member])  # type: ignore[call-arg]  # c["gear"] = (convex, concave)
+        write_stl(out / f"{member.value}.stl", gear, name=member.value)
         names += [f"{member.value}_tooth.stl", f"{member.value}.stl"]
     return names
 
 
-def step_files(tooth_grids_by_member, out: Path) -> list[str]:
-    """STEP with exact B-spline flank surfaces of one tooth per member (extra ``cad``)."""
+def step_files(tooth_grids_by_member, out: Path, teeth=None, cad=None) -> list[str]:
+    """STEP solids (extra ``cad``) per member: one tooth (exact B-spline flank and fillet faces), and with ``teeth``
+    ({member: z}) the whole gear, that tooth placed z times and fused with the body."""
     from ..io.step import write_step
 
     names = []
-    for member, (convex, concave) in tooth_grids_by_member.items():
+    for member, c in _cad(tooth_grids_by_member, cad).items():
         name = f"{member.value}_tooth.step"
-        write_step(out / name, convex, concave, solid=True)
+        (cx, _), (cc, _) = c["tooth"]
+        write_step(out / name, cx, cc, solid=True, fillet_rows=c["fillet_rows"])
         names.append(name)
+        if teeth is not None:
+            (gx, _), (gc, _) = c["gear"]
+            write_step(out / f"{member.value}.step", gx, gc, solid=True, z=int(teeth[member]),
+                       fillet_rows=c["gear_fillet_rows"])
+            names.append(f"{member.value}.step")
     return names
 
 

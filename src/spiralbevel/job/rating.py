@@ -7,11 +7,14 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..conventions import Member, Side
 from ..errors import DesignError, Problem
 from ..io.design_schema import DesignFile
 
-__all__ = ["rating_input_from_design", "rating_from_design", "rating_report", "rating_ltca_report"]
+__all__ = ["rating_input_from_design", "rating_from_design", "rating_report", "rating_ltca_report",
+           "rating_fe_root_report", "fe_root_stress_from_job"]
 
 # RatingInput field -> design-file path
 FIELD_PATHS = {
@@ -91,9 +94,11 @@ def rating_report(spec: DesignFile, blank, report: dict, summary) -> None:
                               f"S_F2 = {res['S_F2']:.3f}")
 
 
-def rating_ltca_report(spec: DesignFile, blank, report: dict, summary, ltca_result) -> None:
+def rating_ltca_report(spec: DesignFile, blank, report: dict, summary, ltca_result, setups=None, out=None,
+                       plots: bool = False) -> None:
     """Add ``rating.ltca_comparison`` (LTCA peak pressure against sigma_H0, sigma_H at the LTCA torque) when the
-    design has ``[rating]`` and the LTCA of the drive side ran (hook of the face-milled run after its LTCA)."""
+    design has ``[rating]`` and the LTCA of the drive side ran (hook of the face-milled run after its LTCA); with the
+    flank ``setups`` also ``rating.fe_root_stress`` (:func:`rating_fe_root_report`)."""
     if spec.rating is None or ltca_result is None or "rating" not in report:
         return
     assert spec.ltca is not None  # the LTCA ran, so the design has an [ltca] section
@@ -109,3 +114,81 @@ def rating_ltca_report(spec: DesignFile, blank, report: dict, summary, ltca_resu
         "sigma_H0": "N/mm^2", "sigma_H": "N/mm^2", "p_max/sigma_H0": "-", "p_max/sigma_H": "-"}}
     summary.highlights.append(f"LTCA peak pressure {cmp['p_max_ltca']:.0f} N/mm^2 = {cmp['p_max/sigma_H0']:.2f} "
                               f"sigma_H0, {cmp['p_max/sigma_H']:.2f} sigma_H (ISO 10300 B1 at the LTCA torque)")
+    if setups is not None:
+        rating_fe_root_report(spec, blank, report, summary, ltca_result, setups, out, plots)
+
+
+#: units of the figures of ``rating.fe_root_stress`` (per member)
+FE_ROOT_UNITS = {
+    "T1_ltca": "N m", "sigma1_max": "N/mm^2", "face_fraction_from_toe": "-", "height_above_root_mm": "mm",
+    "axial_section_radius_mm": "mm", "axial_section_z_mm": "mm", "pinion_angle_deg": "deg",
+    "max_equilibrium_error_N": "N", "sigma_F0": "N/mm^2", "sigma_F": "N/mm^2", "sigma1/sigma_F0": "-",
+    "sigma1/sigma_F": "-"}
+
+
+def rating_fe_root_report(spec: DesignFile, blank, report: dict, summary, ltca_result, setups, out=None,
+                          plots: bool = False) -> None:
+    """Add ``rating.fe_root_stress``: the maximum principal stress along the root fillets of pinion and gear in the
+    FE tooth model under the LTCA's contact forces, against sigma_F0 and sigma_F of Method B1 at the LTCA torque
+    (and ``root_stress.png`` in ``out`` with ``plots``)."""
+    if (spec.rating is None or spec.ltca is None or ltca_result is None or "rating" not in report
+            or spec.ltca.side != "drive"):
+        return
+    from ..errors import SpiralBevelError
+    from ..rating.fe_root_stress import compare_root_stress
+
+    try:
+        stresses = fe_root_stress_from_job(spec, blank, setups, ltca_result)
+    except SpiralBevelError as err:
+        report["rating"]["fe_root_stress"] = {"status": f"not computed: {err}"}
+        summary.highlights.append(f"FE root stress not computed: {err}")
+        return
+    cmp = compare_root_stress(blank, rating_input_from_design(spec, blank), ltca_result, stresses)
+    report["rating"]["fe_root_stress"] = {
+        "status": "ok", **cmp, "fillet_rows": FE_ROOT_FILLET_ROWS, "units": FE_ROOT_UNITS,
+        "model": "3-tooth segments with their generated root fillets, quadratic tetrahedra clamped at the rim, the "
+                 "LTCA's normal contact forces (no friction); maximum principal stress nodal-averaged, largest over "
+                 "every mesh position with tooth 0 in the role of each loaded pair"}
+    p, g = cmp["pinion"], cmp["gear"]
+    summary.highlights.append(
+        f"FE root stress at T1 = {cmp['T1_ltca']:.1f} N m: pinion {p['sigma1_max']:.0f} N/mm^2 "
+        f"({p['sigma1/sigma_F0']:.2f} sigma_F01), gear {g['sigma1_max']:.0f} N/mm^2 ({g['sigma1/sigma_F0']:.2f} "
+        f"sigma_F02)")
+    if plots and out is not None:
+        from ..viz.root_stress_plot import plot_root_stress
+        from .outputs import save_figure
+
+        fig = plot_root_stress(stresses, f"FE tooth root stress at T1 = {cmp['T1_ltca']:.1f} N m: {spec.title}",
+                               sigma_F0={"pinion": p["sigma_F0"], "gear": g["sigma_F0"]})
+        summary.files.append(save_figure(fig, out / "root_stress.png"))
+
+
+#: fillet rows of the flank grids of the FE root-stress model (from the cutter-tip root line to the blade junction)
+FE_ROOT_FILLET_ROWS = 4
+
+
+def fe_root_stress_from_job(spec: DesignFile, blank, setups, ltca_result, fe_options=None):
+    """FE root stress of pinion and gear (:func:`~spiralbevel.rating.fe_root_stress.fe_root_stress`) under the
+    contact forces of the job's LTCA: the flank grids of the LTCA's FE model (``[ltca] flank_grid``) with
+    ``FE_ROOT_FILLET_ROWS`` fillet rows below, in the same (phased) member frames."""
+    from ..meshing.generated_surface import phased_for_pair
+    from ..rating.fe_root_stress import fe_root_stress
+    from .facemilled import tooth_rotation
+    from .ltca import _tooth_grids
+    from .tca import SIDES
+
+    lt = spec.ltca
+    assert lt is not None  # called after the LTCA of the job, which needs [ltca]
+    s1, s2 = SIDES[lt.side]
+    c1, c2 = phased_for_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank)
+    nf, npf = lt.flank_grid
+    # the last fillet row and the first blade row of ToothFlank.grid coincide: keep one of them
+    grids = {k: np.delete(st.flank.grid(nf, npf, n_fillet=FE_ROOT_FILLET_ROWS, curvature=False).points,
+                          FE_ROOT_FILLET_ROWS, axis=1) for k, st in setups.items()}
+    pin = _tooth_grids(grids, Member.PINION, s1, c1.rotation, tooth_rotation(blank, setups, Member.PINION))
+    gear = _tooth_grids(grids, Member.GEAR, s2, c2.rotation, tooth_rotation(blank, setups, Member.GEAR))
+    # the LTCA names its pairs "pair %+d" after the TCA's tooth-pair index k
+    pairs = [int(name.split()[-1]) for name in ltca_result.pair_names]
+    return fe_root_stress(ltca_result, pin, gear, blank.z1, blank.z2, pairs=pairs, sides=(s1.value, s2.value),
+                          n_fillet=FE_ROOT_FILLET_ROWS, youngs_modulus=lt.youngs_modulus,
+                          poisson_ratio=lt.poisson_ratio, fe_options=fe_options)

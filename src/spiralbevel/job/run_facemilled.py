@@ -71,7 +71,7 @@ def run_facemilled(spec, blank, out, steps, report, summary):
                     f"arcsec, max pressure {lt['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
             from .rating import rating_ltca_report
 
-            rating_ltca_report(spec, blank, report, summary, ltca_result)
+            rating_ltca_report(spec, blank, report, summary, ltca_result, setups=setups, out=out, plots=o.plots)
     with steps.step("ease-off and measurement grids"):
         from .inspection import easeoff_maps, measurement_files
 
@@ -96,12 +96,18 @@ def run_facemilled(spec, blank, out, steps, report, summary):
             summary.files.append(outputs.curvature_maps(
                 {k: _Geo(g.points, g.k1, g.k2) for k, g in grids.items()}, out, spec.title,
                 labels=("k1 (principal, nearer the profile)", "k2 (principal, nearer the face)")))
+    teeth = {Member.PINION: blank.z1, Member.GEAR: blank.z2}
+    cad = None
+    if o.stl or o.step:  # whole teeth: flanks with their generated fillets
+        cad, warnings = outputs.cad_teeth(spec, blank, setups, n_face, n_profile)
+        report["cad"] = {"fillet_rows": outputs.CAD_FILLET_ROWS, "warnings": warnings}
+        summary.highlights += warnings
     if o.stl:
         with steps.step("STL"):
-            summary.files += outputs.stl_files(tooth, {Member.PINION: blank.z1, Member.GEAR: blank.z2}, out)
+            summary.files += outputs.stl_files(tooth, teeth, out, cad=cad)
     if o.step:
         with steps.step("STEP"):
-            summary.files += outputs.step_files(tooth, out)
+            summary.files += outputs.step_files(tooth, out, teeth=teeth, cad=cad)
     for name in ("drive", "coast"):
         sec = report["tca"][name]
         summary.highlights.append(f"TCA {name}: " + (sec["error"] if "error" in sec else

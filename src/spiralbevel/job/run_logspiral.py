@@ -65,7 +65,7 @@ def run_logspiral(spec, blank, out, steps, report, summary):
             summary.files += outputs.stl_files(tooth, teeth, out)
     if o.step:
         with steps.step("STEP"):
-            summary.files += outputs.step_files(tooth, out)
+            summary.files += outputs.step_files(tooth, out, teeth=teeth)
     if "mismatch" in report:
         t = report["mismatch"]["tca"]
         summary.highlights.append(

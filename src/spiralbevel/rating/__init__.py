@@ -6,9 +6,11 @@ symbols in ASCII (``sigma_H``, ``Z_M-B``, ``Y_Fa1`` ...). Lengths mm, forces N, 
 (degrees only in :meth:`RatingResult.to_dict`).
 """
 
+from .fe_root_stress import MemberRootStress, compare_root_stress, fe_root_stress
 from .inputs import RatingInput, pitch_deviation_from_grade
 from .ltca_compare import compare_with_ltca
 from .rate import rate_iso10300
 from .result import RatingResult
 
-__all__ = ["RatingInput", "RatingResult", "rate_iso10300", "pitch_deviation_from_grade", "compare_with_ltca"]
+__all__ = ["RatingInput", "RatingResult", "rate_iso10300", "pitch_deviation_from_grade", "compare_with_ltca",
+           "fe_root_stress", "compare_root_stress", "MemberRootStress"]
