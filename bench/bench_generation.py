@@ -43,7 +43,7 @@ def main():
     def grid_fsolve():
         out = np.empty(g.u.shape + (3,))
         for i, j in np.ndindex(g.u.shape):
-            def F(x):
+            def F(x, i=i, j=j):
                 p = gen.points(x[0], x[1])
                 Rx, hx = ol.Rh(p[2], np.hypot(p[0], p[1]))
                 return [Rx - R[i, j], hx - h[i, j]]
@@ -51,7 +51,8 @@ def main():
             out[i, j] = gen.points(x[0], x[1])
         return out
     t_base, pb = best(grid_fsolve, REPEAT_BASE)
-    print(f"  per-point fsolve baseline: {1e3 * t_base:.1f} ms  -> ratio {t_base / t_grid:.0f}x (median of {REPEAT} / {REPEAT_BASE} runs)  "
+    print(f"  per-point fsolve baseline: {1e3 * t_base:.1f} ms  -> ratio {t_base / t_grid:.0f}x "
+          f"(median of {REPEAT} / {REPEAT_BASE} runs)  "
           f"(max diff {np.abs(pb - g.points).max():.1e} mm)")
 
     # locate on 1000 points
@@ -67,14 +68,15 @@ def main():
     def loc_fsolve():
         out = np.empty((1000, 3))
         for k in range(1000):
-            def F(x):
+            def F(x, k=k):
                 p = gen.points(x[0], x[1])
                 return [np.hypot(p[0], p[1]) - rad[k], p[2] - ax[k]]
             x = fsolve(F, [u0[k], p0[k]], xtol=1e-10)
             out[k] = gen.points(x[0], x[1])
         return out
     t_lb, pl = best(loc_fsolve, REPEAT_BASE)
-    print(f"  per-point fsolve baseline: {1e3 * t_lb:.1f} ms  -> ratio {t_lb / t_loc:.0f}x (median of {REPEAT} / {REPEAT_BASE} runs)  "
+    print(f"  per-point fsolve baseline: {1e3 * t_lb:.1f} ms  -> ratio {t_lb / t_loc:.0f}x "
+          f"(median of {REPEAT} / {REPEAT_BASE} runs)  "
           f"(max diff {np.abs(pl - loc.points).max():.1e} mm)")
 
 

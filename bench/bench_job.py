@@ -6,7 +6,8 @@
 
 There is no simpler alternative to compare against; the figures are absolute (median of ``--repeat`` runs, default 3;
 the cold run clears the cache before each repeat): wall-clock time and, since a shared machine stretches the wall
-clock, the CPU time (user + system) of the job's process and its children. Run: ``python bench/bench_job.py [--repeat R]``.
+clock, the CPU time (user + system) of the job's process and its children. Run: ``python bench/bench_job.py [--repeat
+R]``.
 """
 
 from __future__ import annotations

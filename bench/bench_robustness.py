@@ -1,7 +1,8 @@
 """Robustness of the face-milled design path: random plausible designs from basic data to a developed pair.
 
 Samples designs (pinion 9-40 teeth, ratio 1-6, shaft angle 60-120 deg, mean spiral angle 0-45 deg (> 0 in the design
-file: 1-45), outer module 1-12 mm, face width 0.15-0.3 Re, both hands, gear pitch angle below 85 deg, pressure angle 20 deg, cutter radius 0.8-1.1 R_m), and runs for each what
+file: 1-45), outer module 1-12 mm, face width 0.15-0.3 Re, both hands, gear pitch angle below 85 deg, pressure angle 20
+deg, cutter radius 0.8-1.1 R_m), and runs for each what
 ``spiralbevel run`` does up to the TCA: the ISO blank, default cutters and solved basic settings for the four flanks,
 local synthesis of both pinion sides (the developed pair by default) and the TCA of both sides. A design counts as
 developed when every step succeeds and both TCA sides have contact at every position. Prints the fraction developed,

@@ -61,7 +61,8 @@ def main():
     ref = np.array([c.point_radius, c.blade_angle, s.radial_setting, s.cradle_angle, s.ratio_of_roll,
                     s.blank_offset, u])
     print(f"settings fit, solve_batched: {t_fit * 1e3:.1f} ms; scipy fsolve: {t_base * 1e3:.1f} ms "
-          f"(residual {ok:.1e}, max |x - x_newton| {np.abs(xb - ref).max():.1e}); ratio {t_base / t_fit:.2f}x (median of 7 runs each)")
+          f"(residual {ok:.1e}, max |x - x_newton| {np.abs(xb - ref).max():.1e}); "
+          f"ratio {t_base / t_fit:.2f}x (median of 7 runs each)")
 
 
 if __name__ == "__main__":

@@ -60,5 +60,6 @@ print(f"first touch vs surface TCA, aligned: {np.nanmax(np.abs(study.aligned_mis
 for row in study.rows:
     rm = solve_tca(c1, c2, kin, phi1_mean=phi1m, n_positions=21, start=start, misalignment=mis[row.name])
     print(f"{row.name:13s} TE growth: line {row.line_growth / ARCSEC:+.4f}  mismatched "
-          f"{row.mismatched_growth / ARCSEC:+.4f} arcsec  (mismatched ptp: first touch {row.mismatched_ptp / ARCSEC:.3f},"
+          f"{row.mismatched_growth / ARCSEC:+.4f} arcsec  "
+          f"(mismatched ptp: first touch {row.mismatched_ptp / ARCSEC:.3f},"
           f" surface TCA {rm.peak_to_peak / ARCSEC:.3f})")

@@ -1,12 +1,14 @@
 """Seed 001 (Liu, Chen, Li, Machines 2024, 12, 34) end to end: a face-milled spiral bevel pair with a predesigned
 fourth-order combined motion curve (CMC) by multi-point control of the pinion's blank offset.
 
-Steps (seed 001 §2.2, §4.3, §5; equations as decoded in shared/reference/ERRATA.md §1):
+Steps (seed 001 §2.2, §4.3, §5; equations as decoded in docs/theory/tca.md, docs/theory/generation.md,
+docs/theory/ltca.md):
 
 1. gear: Table 1 blank and Table 4 settings (gear convex side, inner blade);
 2. local synthesis of the pinion concave side at the mean contact point M (Table 2: eta = 6 deg, a = 3.7 mm, a
    parabolic TE of 3 arcsec);
-3. CMC by Steps 1-4 with an envelope depth of 3 arcsec (Table 3 is inconsistent and not used, ERRATA §1.2);
+3. CMC by Steps 1-4 with an envelope depth of 3 arcsec (Table 3 is inconsistent and not used,
+   docs/theory/example.md#table-3);
 4. multi-point control: at 11 pinion rotations over one mesh cycle the pinion's instantaneous blank offset E_m1 is
    solved so that the TE equals the CMC (Eq. (17), absolute tolerance 1e-9 rad); E_m1(psi_c1) is interpolated between
    the nodes (natural cubic spline; "linear" as in the paper is available with --interpolation linear, without TCA);
@@ -71,7 +73,6 @@ def figures(design, real, outdir: Path):
     T = 2 * math.pi / z1
     c0 = float(cmc(0.0))
     out = {}
-    kw = dict(dpi=120, bbox_inches="tight")
 
     # Figure 5: predesigned CMC, one pair and three pairs
     x = np.linspace(-1.5 * T, 1.5 * T, 601)

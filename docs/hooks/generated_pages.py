@@ -89,7 +89,7 @@ def api_pages() -> dict[str, str]:
         for name, obj in members:
             target = f"{obj.__module__}.{getattr(obj, '__qualname__', name)}"
             lines += [f"::: {target}", "    options:", "      show_root_heading: true",
-                      f"      show_root_full_path: false", ""]
+                      "      show_root_full_path: false", ""]
         pages[f"api/{stem}.md"] = "\n".join(lines)
         index.append(f"- [{title}]({stem}.md): " + ", ".join(f"`{n}`" for n, _ in members))
     pages["api/index.md"] = "\n".join(index) + "\n"

@@ -6,9 +6,10 @@ Units inside: mm and rad; conventions in docs/conventions.md.
 
 from importlib import import_module
 
-from spiralbevel.conventions import Hand, Member, Side
-from spiralbevel.errors import (ConvergenceError, DesignError, GeometryError, MissingDependencyError, NoContactError,
-                                SpiralBevelError)
+# re-exported: __all__ below is built with sorted(), which the linter cannot read
+from spiralbevel.conventions import Hand, Member, Side  # noqa: F401
+from spiralbevel.errors import (ConvergenceError, DesignError, GeometryError, MissingDependencyError,  # noqa: F401
+                                NoContactError, SpiralBevelError)
 
 __version__ = "0.1.0"
 

@@ -208,7 +208,7 @@ def rate(
     titles = {"load": "Load", "virtual": "Virtual cylindrical gears (ISO 10300-1 Annex A)",
               "factors": "Load factors (ISO 10300-1)", "pitting": "Pitting (ISO 10300-2, Method B1)",
               "root": "Tooth root (ISO 10300-3, Method B1)"}
-    tables = {}
+    tables: dict[str, Table] = {}
     for section, sym, desc, unit, value in res.rows():
         if section not in tables:
             t = tables[section] = Table(title=f"{titles[section]}: {spec.title}" if not tables else titles[section])

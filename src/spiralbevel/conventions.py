@@ -19,7 +19,7 @@ class Member(str, Enum):
     GEAR = "gear"
 
     @property
-    def index(self) -> int:
+    def index(self) -> int:  # type: ignore[override]  # deliberately shadows str.index: 1 or 2
         return 1 if self is Member.PINION else 2
 
 

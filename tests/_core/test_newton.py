@@ -17,13 +17,15 @@ def test_batched_newton_matches_per_point_fsolve():
     res = solve_batched(_fun, x0, tol=1e-13)
     assert res.converged.all()
     for i in range(0, 50, 7):
-        ref = fsolve(lambda y: _fun(np.tile(y, (50, 1)))[i], x0[i], xtol=1e-12)
+        ref = fsolve(lambda y, i=i: _fun(np.tile(y, (50, 1)))[i], x0[i], xtol=1e-12)
         assert np.allclose(res.x[i], ref, atol=1e-11)
 
 
 def test_newton_converges_quadratically():
-    f = lambda x: np.stack([np.exp(x[..., 0]) - 2.0], -1)
-    jac = lambda x: np.exp(x[..., 0])[..., None, None]
+    def f(x):
+        return np.stack([np.exp(x[..., 0]) - 2.0], -1)
+    def jac(x):
+        return np.exp(x[..., 0])[..., None, None]
     errs = []
     x = np.array([[1.5]])
     for it in range(1, 5):
@@ -42,7 +44,8 @@ def test_fd_jacobian_matches_analytic():
 
 
 def test_unconverged_flagged_not_raised():
-    f = lambda x: x**2 + 1.0  # no real root
+    def f(x):
+        return x**2 + 1.0  # no real root
     res = solve_batched(f, np.array([[0.5]]), max_iter=5)
     assert not res.converged[0]
 

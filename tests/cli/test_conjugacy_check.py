@@ -3,7 +3,7 @@
 import dataclasses
 import math
 
-from spiralbevel.conventions import Member, Side
+from spiralbevel.conventions import Side
 from spiralbevel.io.design_file import load_design
 from spiralbevel.job.blank import blank_from_design
 from spiralbevel.job.conjugacy import conjugacy_report
@@ -36,5 +36,6 @@ def test_wrong_base_cone_is_reported():
     rep = conjugacy_report(dataclasses.replace(pair, gear=gear_bad))
     for side in ("convex", "concave"):
         assert not rep[side]["conjugate"]
-        # ERRATA §2 (conjugacy theorem): delta2 + 0.5 deg gives a deviation of the order of 0.1 mm
+        # docs/theory/gearing.md#conjugacy (conjugacy theorem): delta2 + 0.5 deg gives a deviation of the order of 0.1
+        # mm
         assert 0.01 < rep[side]["max_distance_mm"] < 1.0

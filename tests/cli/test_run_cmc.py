@@ -27,7 +27,7 @@ def cmc_report(tmp_path_factory):
 def test_control_points_follow_the_cmc(cmc_report):
     t = cmc_report["tca"]
     errs = t["control_point_errors_rad"]
-    assert len(errs) >= 11 and max(errs) <= 1e-9          # Eq. (17) with an absolute tolerance (ERRATA §1.1)
+    assert len(errs) >= 11 and max(errs) <= 1e-9          # Eq. (17), absolute tolerance (docs/theory/tca.md, Eq. (T8))
     assert t["max_transmission_error_arcsec"] < 0
 
 

@@ -24,7 +24,8 @@ def default_run(tmp_path_factory):
 def test_default_run_writes_everything(default_run):
     out, report = default_run
     names = set(report["files"])
-    assert {"report.json", "curvature_maps.png", "curvature_domain.png", "pitch_traces.png", "meshing_pair_3d.png", "transverse_section.png", "draft_map.png",
+    assert {"report.json", "curvature_maps.png", "curvature_domain.png", "pitch_traces.png", "meshing_pair_3d.png",
+            "transverse_section.png", "draft_map.png",
             "pinion_tooth.stl", "gear_tooth.stl", "pinion.stl", "gear.stl"} <= names
     assert sum(n.startswith("toolpath_") and n.endswith(".csv") for n in names) == 4
     for n in names:
@@ -34,7 +35,7 @@ def test_default_run_writes_everything(default_run):
 def test_report_blank_matches_seed001(default_run):
     _, report = default_run
     blank = report["blank"]
-    # seed 001 Table 1 (ERRATA §1.2): pitch angles 19°29'10.1", mean cone distance 115.9511 mm
+    # seed 001 Table 1 (docs/theory/example.md): pitch angles 19°29'10.1", mean cone distance 115.9511 mm
     assert blank["pinion"]["delta1"] == pytest.approx(19 + 29 / 60 + 10.1 / 3600, abs=1e-4)
     assert blank["pair"]["Rm"] == pytest.approx(115.9511, abs=1e-4)
 
@@ -42,7 +43,7 @@ def test_report_blank_matches_seed001(default_run):
 def test_report_logspiral_recipe_independent_check(default_run):
     _, report = default_run
     ls = report["logspiral"]
-    # ERRATA §0.1 recipe, recomputed here: tan a_t = tan a_n / cos b_m, sin d_i = sin g_i cos a_t
+    # docs/theory/logspiral.md, Eq. (S12), recomputed here: tan a_t = tan a_n / cos b_m, sin d_i = sin g_i cos a_t
     a_n, b_m = math.radians(20), math.radians(30)
     a_t = math.atan(math.tan(a_n) / math.cos(b_m))
     g1 = math.atan2(23, 65)

@@ -37,7 +37,8 @@ def test_seed001_gear_mean_point(fm_run):
     # seed 001 Table 1: 30 deg mean spiral angle, left-hand gear; Table 4 settings give it within 0.05 deg
     assert gear["spiral_angle_deg"] == pytest.approx(30.0, abs=0.05)
     assert gear["hand"] == "LH" and report["flanks"]["pinion"]["concave"]["hand"] == "RH"
-    # the mean point lies at the mean cone distance A_m = 115.9511 mm on the pitch cone (seed 003 / ERRATA §3.1)
+    # the mean point lies at the mean cone distance A_m = 115.9511 mm on the pitch cone (seed 003 /
+    # docs/theory/generation.md, Eqs. (G7)-(G9))
     p = np.array(gear["mean_point_mm"])
     assert np.linalg.norm(p) == pytest.approx(115.9511, abs=1e-3)
     assert math.degrees(math.atan2(math.hypot(p[0], p[1]), p[2])) == pytest.approx(70 + 30 / 60 + 49.9 / 3600,

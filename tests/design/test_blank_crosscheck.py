@@ -141,7 +141,7 @@ def test_whole_depth_normal_to_root_equals_the_standard_closed_form(kw):
     apex and crown distances, against the point-to-line distance the code uses."""
     bl = _blank(**kw)
     for k in (1, 2):
-        g = lambda n: getattr(bl, f"{n}{k}")  # noqa: E731
+        g = lambda n, k=k: getattr(bl, f"{n}{k}")  # noqa: E731
         if not (g("delta_a") < R(89.0) and g("delta_f") > R(1.0)):
             continue
         iso = ((g("tzF") + g("txo")) / math.cos(g("delta_a")) * math.sin(g("theta_a") + g("theta_f"))

@@ -9,9 +9,11 @@ alpha_nC, Re2, Ri2, mmn, hmw, c, ham1, ham2, hfm1, hfm2, delta_a1, delta_f1, del
 Verified only by a second, independent computation: the pitch point (delta1, beta_m2, Rm1, zeta_m, t_zm1, t_zm2)
 by a vector model of two cones touching at one point with the relative velocity along the tooth trace
 (:func:`_pitch_point_model`); the pinion face and root cones (delta_a1, delta_f1, t_zF1, t_zR1) by the 3-D distance
-of skew cones, which must equal the clearance; the zero-offset limit of the pitch cones against Method 0 over several designs; the
+of skew cones, which must equal the clearance; the zero-offset limit of the pitch cones against Method 0 over several
+designs; the
 pinion face angle at vanishing offset against uniform clearance. Not verified by either: the pinion face width,
-heel and toe spiral angles, the whole depth h_t1 and the thickness of a hypoid (the standard's formulas, no published figure at hand);
+heel and toe spiral angles, the whole depth h_t1 and the thickness of a hypoid (the standard's formulas, no published
+figure at hand);
 the root/face-plane auxiliary angle φ for Σ != 90° (Sample 2 has Σ = 90°, where φ = 0).
 """
 

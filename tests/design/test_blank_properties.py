@@ -64,7 +64,7 @@ def test_cone_and_depth_identities(kw):
     assert bl.theta_a1 == bl.theta_f2 and bl.theta_a2 == bl.theta_f1
     assert bl.hand2 is bl.hand1.opposite
     for k in (1, 2):
-        g = lambda n: getattr(bl, f"{n}{k}")  # noqa: E731
+        g = lambda n, k=k: getattr(bl, f"{n}{k}")  # noqa: E731
         # the heel tip point sits h_e above the heel root point along the pitch-cone normal, which makes the angle
         # θf with the root-cone normal: its distance from the root cone is h_e·cos θf
         if k == 2:  # the pinion's h_t1 follows the wheel's cones and the clearance (tests/design crosscheck)

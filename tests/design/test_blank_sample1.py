@@ -124,7 +124,7 @@ def test_sample1_unpublished_figures_by_construction():
     mean-point data only (Rm, δ, θ, mean depths), with no formula of the code under test."""
     bl = compute_blank(BlankInput(**BASE, **CASES["given_theta"]))
     for k in (1, 2):
-        g = lambda n: getattr(bl, f"{n}{k}")  # noqa: E731
+        g = lambda n, k=k: getattr(bl, f"{n}{k}")  # noqa: E731
         d, ta, tf = g("delta"), g("theta_a"), g("theta_f")
         axis_r = np.array([math.cos(d), math.sin(d)])  # pitch generator, (z toward the back, r)
         nrm = np.array([-math.sin(d), math.cos(d)])
@@ -132,7 +132,7 @@ def test_sample1_unpublished_figures_by_construction():
         face_dir = np.array([math.cos(d + ta), math.sin(d + ta)])
         root_dir = np.array([math.cos(d - tf), math.sin(d - tf)])
 
-        def on_line(p0, u, cone_distance):
+        def on_line(p0, u, cone_distance, axis_r=axis_r):
             """Point of the line p0 + t·u whose projection on the pitch generator is at the given cone distance."""
             t = (cone_distance - p0 @ axis_r) / (u @ axis_r)
             return p0 + t * u

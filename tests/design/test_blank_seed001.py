@@ -1,4 +1,4 @@
-"""Seed 001 (Liu, Chen, Li, Machines 2024, 12, 34), Table 1 blank data, as decoded in reference/ERRATA.md §1.2.
+"""Seed 001 (Liu, Chen, Li, Machines 2024, 12, 34), Table 1 blank data, as decoded in docs/theory/example.md
 
 Inputs: 23/65 teeth, Σ = 90°, outer transverse module 3.9 mm, b = 37 mm, β = 30°, α = 20°, cutter radius 114.3 mm
 (Table 4), dedendum angles θf1 = 1°05′50″, θf2 = 2°29′20″ given (uniform clearance: θa1 = θf2, θa2 = θf1).
@@ -29,12 +29,12 @@ def test_pitch_angles_rounded_to_the_minute(blank):
     # Table 1: 19°29′ and 70°31′ (rounded to the minute) -> within half a minute
     assert abs(blank.delta1 - dms(19, 29)) <= dms(0, 0.5)
     assert abs(blank.delta2 - dms(70, 31)) <= dms(0, 0.5)
-    # ERRATA §1.2 check column: atan(23/65) = 19°29′10.1″
+    # docs/theory/example.md: atan(23/65) = 19°29′10.1″
     assert abs(blank.delta1 - dms(19, 29, 10.1)) <= dms(0, 0, 0.05)
 
 
 def test_mean_cone_distance(blank):
-    # Table 1: A_m = 115.9511 mm (= m z2 / (2 sin γ2) − b/2, ERRATA §1.2), printed to 4 decimals
+    # Table 1: A_m = 115.9511 mm (= m z2 / (2 sin γ2) − b/2, docs/theory/example.md), printed to 4 decimals
     assert blank.Rm == pytest.approx(115.9511, abs=5e-5)
     assert blank.Rm1 == blank.Rm2 == blank.Rm
 
@@ -49,7 +49,7 @@ def test_face_and_root_angles(blank):
 
 
 def test_face_width_ratios_and_hands(blank):
-    # ERRATA §1.2: b/A_o = 0.275 <= 0.3 and b/m = 9.49 <= 10 -> no face width warning
+    # docs/theory/example.md: b/A_o = 0.275 <= 0.3 and b/m = 9.49 <= 10 -> no face width warning
     assert blank.b2 / blank.Re2 == pytest.approx(0.2752, abs=1e-4)
     assert not any("face width" in w for w in blank.warnings)
     assert blank.hand1 is Hand.RIGHT and blank.hand2 is Hand.LEFT

@@ -1,4 +1,5 @@
-"""Log-spiral pair design (ERRATA §0.1 recipe, §2.2 conjugacy) checked by independent measurements."""
+"""Log-spiral pair design (docs/theory/logspiral.md, Eq. (S12); docs/theory/gearing.md, Eq. (M8)) checked by independent
+measurements."""
 
 import numpy as np
 import pytest
@@ -33,8 +34,9 @@ def _pair(z1, z2, shaft, an, bm, hand, **kw):
     return design_logspiral_pair(z1, z2, S, an, bm, hand, _boundaries(z1, z2, S, an, bm), **kw)
 
 
-def test_errata_example_recipe_numbers():
-    """ERRATA §0.1 example (23/65, S = 90, alpha_n = 20, beta_m = 35 deg); printed to 10 decimals of a degree."""
+def test_example_recipe_numbers():
+    """docs/theory/logspiral.md, Eq. (S2) (#surface) example (23/65, S = 90, alpha_n = 20, beta_m = 35 deg); printed to
+    10 decimals of a degree."""
     p = _pair(23, 65, 90.0, 20.0, 35.0, Hand.RIGHT)
     assert np.degrees(p.pinion.pitch_angle) == pytest.approx(19.4861295725, abs=1e-10)
     assert np.degrees(p.transverse_pressure_angle) == pytest.approx(23.9568032445, abs=1e-10)
@@ -42,7 +44,7 @@ def test_errata_example_recipe_numbers():
     assert np.degrees(p.gear.base_cone_angle) == pytest.approx(59.4863803737, abs=1e-10)
     assert np.degrees(p.plane_spiral_angle) == pytest.approx(32.6146071483, abs=1e-10)
     assert p.pinion.spiral_parameter > 0 and p.gear.spiral_parameter == -p.pinion.spiral_parameter
-    # ERRATA §2.2: base cones consistent, sin d1 : sin d2 = z1 : z2
+    # docs/theory/gearing.md, Eqs. (M1)-(M8): base cones consistent, sin d1 : sin d2 = z1 : z2
     assert np.sin(p.pinion.base_cone_angle) / np.sin(p.gear.base_cone_angle) == pytest.approx(23 / 65, rel=1e-14)
 
 
@@ -87,13 +89,14 @@ def _invert_onto(flank, side, q):
 @pytest.mark.parametrize("case", CASES)
 @pytest.mark.parametrize("roll", [0.0, 0.07])
 def test_zero_backlash_line_contact_in_pair_frame(case, roll):
-    """ERRATA §2.2: the contact line lies where det[r, n, p] = 0, phi* = +-acos(tan d1/tan g1) - (phi1 + rotation).
+    """docs/theory/gearing.md, Eqs. (M1)-(M8): the contact line lies where det[r, n, p] = 0, phi* = +-acos(tan d1/tan
+    g1) - (phi1 + rotation).
 
     Mapped into the gear frame, those pinion points must lie exactly on the mating gear flank (pinion concave <->
     gear convex), with opposite outward normals, up to a whole number of gear pitches: this checks recipe, phasing and
     thickness (zero backlash) together.
     """
-    z1, z2 = case[0], case[1]
+    z2 = case[1]
     p = _pair(*case)
     d1, g1 = p.pinion.base_cone_angle, p.pinion.pitch_angle
     for side in Side:
@@ -158,7 +161,7 @@ def test_tooth_placement_and_thickness(case):
     assert fr1 + p.gear.mean_normal_thickness / pn2 == pytest.approx(1.0, rel=1e-13)
 
 
-def test_convex_concave_per_hand_follow_errata_table():
+def test_convex_concave_per_hand_follow_flank_type_table():
     for hand in Hand:
         p = _pair(23, 65, 90.0, 20.0, 35.0, hand)
         for member in Member:
@@ -213,7 +216,8 @@ def test_bad_input_is_design_error(kw, field):
 
 def test_profile_inflection_near_crown_gear_is_rejected():
     """A 12/31 pair at S = 105 deg has a gear pitch angle near 80 deg: on the gear concave flank |psi - beta| passes
-    90 deg, where k1 = cos(psi - beta)/(rho |sin psi|) changes sign (outside the region verified in ERRATA §0.1)."""
+    90 deg, where k1 = cos(psi - beta)/(rho |sin psi|) changes sign (outside the region verified in
+    docs/theory/logspiral.md, Eq. (S9) (#flank-types))."""
     with pytest.raises(GeometryError, match=r"gear concave flank: \|psi - beta\| reaches 1\d\d\.\d{4} deg"):
         _pair(12, 31, 105.0, 20.0, 25.0, Hand.RIGHT)
 

@@ -24,7 +24,8 @@ DESIGNS = [  # (z1, z2, Sigma deg, beta_m deg, pinion hand, module mm, face widt
 
 
 def _blank(z1, z2, sigma, beta, hand, m, b):
-    return compute_blank(BlankInput(z1=z1, z2=z2, shaft_angle=math.radians(sigma), met=m, b=b, beta_m=math.radians(beta),
+    return compute_blank(BlankInput(z1=z1, z2=z2, shaft_angle=math.radians(sigma), met=m, b=b,
+                                    beta_m=math.radians(beta),
                                     alpha_dD=math.radians(20.0), alpha_dC=math.radians(20.0), hand1=hand,
                                     rc0=114.3))
 
@@ -51,7 +52,7 @@ def _fd_normal(flank, u, psi, h=1e-5):
 
 def test_mean_point_angles_hit_the_design(solved):
     blank, out = solved
-    for (m, s), (cutter, settings, flank, fit) in out.items():
+    for (m, s), (_cutter, _settings, flank, fit) in out.items():
         i = m.index
         delta = getattr(blank, f"delta{i}")
         design_alpha = blank.alpha_nD if (m is Member.PINION) == (s is Side.CONCAVE) else blank.alpha_nC
@@ -79,7 +80,7 @@ def test_mean_point_angles_hit_the_design(solved):
 
 def test_root_on_root_cone(solved):
     blank, out = solved
-    for (m, s), (cutter, settings, flank, fit) in out.items():
+    for (m, s), (_cutter, _settings, flank, _fit) in out.items():
         i = m.index
         delta, delta_f = getattr(blank, f"delta{i}"), getattr(blank, f"delta_f{i}")
         # root cone through the ISO heel root point (R = Re, h = -hfe), at the root angle
@@ -96,7 +97,7 @@ def test_root_on_root_cone(solved):
 def test_pitch_roll_puts_instantaneous_axis_through_mean_point(solved):
     """The relative velocity of cradle and work vanishes at the mean pitch point (second check of the roll)."""
     blank, out = solved
-    for (m, s), (cutter, settings, flank, fit) in out.items():
+    for (_m, _s), (_cutter, _settings, flank, _fit) in out.items():
         mp = flank.mean_point()
         assert abs(flank.meshing_residual(mp.u, mp.theta, mp.psi_c)) < 1e-6
 
@@ -123,5 +124,5 @@ def test_default_cutter_fits_the_slot():
 def test_mean_point_generated_at_zero_cradle_angle(solved):
     """Gauge of the solved settings: the mean point is generated at psi_c = 0 (the start of local synthesis)."""
     blank, out = solved
-    for (m, s), (cutter, settings, flank, fit) in out.items():
+    for (_m, _s), (_cutter, _settings, flank, _fit) in out.items():
         assert abs(flank.mean_point().psi_c) < 1e-8

@@ -1,4 +1,5 @@
-"""Curvature transfer (ERRATA §3.3) against numerical differential geometry of the generated map (u, psi_c) -> r."""
+"""Curvature transfer (docs/theory/generation.md, Eqs. (G13)-(G15) (#curvature-transfer)) against numerical differential
+geometry of the generated map (u, psi_c) -> r."""
 
 import math
 

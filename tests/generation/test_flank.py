@@ -106,7 +106,7 @@ def test_seed001_gear_table4_mean_point(gear_t4):
     assert math.degrees(mp.pressure_angle_root) == pytest.approx(23 + 50 / 60, abs=0.05)
     assert mp.hand_sign == -1                                 # gear is LH (Table 1)
     assert mp.k1 > 0 and mp.k2 > 0                            # convex flank
-    # ERRATA §3.1 step 7: |r| = mean cone distance at the pitch point
+    # docs/theory/generation.md, Eqs. (G10)-(G11) (#mean-point): |r| = mean cone distance at the pitch point
     assert np.linalg.norm(mp.point) == pytest.approx(115.9511, abs=1e-9)
 
 

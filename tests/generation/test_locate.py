@@ -16,14 +16,15 @@ def test_locate_matches_fsolve_and_grid(member, side):
     # curvatures jump across the fillet/blade junction (row 0, a C1 seam): compare off the seam
     np.testing.assert_allclose(res.k1[:, 1:], g.k1[:, 1:], rtol=1e-8)
     np.testing.assert_allclose(res.k2[:, 1:], g.k2[:, 1:], rtol=1e-8)
-    # per-point fsolve of the same equations F1 = |r x k| - R, F2 = r.k - L (ERRATA §3.1 step 7)
+    # per-point fsolve of the same equations F1 = |r x k| - R, F2 = r.k - L (docs/theory/generation.md, Eqs. (G10)-(G11)
+    # (#mean-point))
     gen = fl.generator
     rng = np.random.default_rng(1)
     idx = rng.choice(g.u.size, 8, replace=False)
     for i in idx:
         ax, rad = g.axial.ravel()[i], g.radius.ravel()[i]
 
-        def F(x):
+        def F(x, rad=rad, ax=ax):
             p = gen.points(x[0], x[1])
             return [np.hypot(p[0], p[1]) - rad, p[2] - ax]
         x0 = [g.u.ravel()[i] + 0.3, g.psi_c.ravel()[i] + 0.01]

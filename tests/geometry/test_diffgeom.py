@@ -1,6 +1,7 @@
 """Generic numerical differential geometry (geometry/diffgeom.py) against closed forms.
 
-Independent second methods: seed 000 closed forms (ERRATA §0.1) for the log-spiral flank; textbook curvatures of a
+Independent second methods: seed 000 closed forms (docs/theory/logspiral.md, Eq. (S2) (#surface)) for the log-spiral
+flank; textbook curvatures of a
 sphere (1/R, 1/R), a cylinder (1/R, 0) and a torus (1/a, cos v/(c + a cos v)) under skewed parametrizations
 (F != 0, M != 0), so no F = M = 0 shortcut can pass.
 """
@@ -29,7 +30,7 @@ def flank_points(draw):
     seed = draw(st.integers(0, 2**31 - 1))
     rng = np.random.default_rng(seed)
     psi = sign * rng.uniform(0.05, 0.9, 40)
-    keep = np.cos(psi - beta) > 0.2  # inside the validity region |psi - beta| < 90 deg with margin (ERRATA §0.1)
+    keep = np.cos(psi - beta) > 0.2  # inside |psi - beta| < 90 deg with margin (docs/theory/logspiral.md, Eq. (S9))
     psi = psi[keep] if keep.any() else sign * np.full(1, 0.05)
     phi = rng.uniform(-0.5, 0.5, psi.size)
     return LogSpiralFlank(rho0, delta, beta), psi / np.sin(delta) + phi, phi
@@ -40,7 +41,8 @@ def flank_points(draw):
 def test_generic_module_matches_closed_forms(data):
     flank, varphi, phi = data
     exact = flank.evaluate(varphi, phi)
-    # the outward normal is sign(beta) unit(r_varphi x r_phi) on both branches (ERRATA §0.2 item 12, n_out = sign(psi) n)
+    # the outward normal is sign(beta) unit(r_varphi x r_phi) on both branches (docs/theory/logspiral.md, Eqs. (S4),
+    # (S9), n_out = sign(psi) n)
     num = surface_geometry(flank.point, varphi, phi, normal_sign=np.sign(flank.spiral_angle))
     assert np.max(np.abs(num.normal - exact.normal)) < 1e-9
     for key in ("E", "G", "L", "N", "k1", "k2"):
@@ -50,7 +52,8 @@ def test_generic_module_matches_closed_forms(data):
     assert np.max(np.abs(num.e1 - exact.e1)) < 1e-8
     assert np.max(np.abs(num.e2 - exact.e2)) < 1e-8
     assert _rel(num.gaussian_curvature, exact.gaussian_curvature) < RTOL
-    assert _rel(num.mean_curvature, exact.mean_curvature) < 1e-7 * np.max(np.abs(exact.k1) / np.abs(exact.mean_curvature))
+    assert _rel(num.mean_curvature, exact.mean_curvature) < 1e-7 * np.max(
+        np.abs(exact.k1) / np.abs(exact.mean_curvature))
 
 
 def _sphere(R, c):

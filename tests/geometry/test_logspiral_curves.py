@@ -1,4 +1,5 @@
-"""Curves of seed 000 Eqs. (1)-(6), (17) and seed 002 Eqs. (25)-(35), corrected per ERRATA §0.2 and §2.1.
+"""Curves of seed 000 Eqs. (1)-(6), (17) and seed 002 Eqs. (25)-(35), corrected per
+docs/theory/logspiral.md#printed-equations and docs/theory/gearing.md#li-surface
 
 Each curve is checked by an independent property (defining equations, numerical angles measured from finite
 differences of the points) rather than by its own formula.
@@ -29,13 +30,14 @@ def test_spherical_involute_defining_equations(delta_deg):
     p = curves.spherical_involute(vp, rho0, d)
     x, y, z = p[..., 0], p[..., 1], p[..., 2]
     psi = vp * np.sin(d)
-    # Eq. (4) sphere, Eq. (2) rolling plane, Eq. (3) chord to T = rho0 t(varphi) (ERRATA §0.2 item 1: z_T = rho0 cos d)
+    # Eq. (4) sphere, Eq. (2) rolling plane, Eq. (3) chord to T = rho0 t(varphi)
+    # (docs/theory/logspiral.md#printed-equations, item 1: z_T = rho0 cos d)
     assert np.allclose(x**2 + y**2 + z**2, rho0**2, rtol=1e-14)
     assert np.allclose(x * np.cos(d) * np.cos(vp) + y * np.cos(d) * np.sin(vp) - z * np.sin(d), 0, atol=1e-12)
     chord = ((x - rho0 * np.sin(d) * np.cos(vp)) ** 2 + (y - rho0 * np.sin(d) * np.sin(vp)) ** 2
              + (z - rho0 * np.cos(d)) ** 2)
     assert np.allclose(chord, 4 * rho0**2 * np.sin(psi / 2) ** 2, rtol=1e-11, atol=1e-11)
-    # Eq. (6) corrected (ERRATA §0.2 item 3) equals Eq. (5)
+    # Eq. (6) corrected (docs/theory/logspiral.md#printed-equations, item 3) equals Eq. (5)
     assert np.allclose(curves.spherical_involute_matrix_form(vp, rho0, d), p, rtol=1e-14, atol=1e-12)
 
 
@@ -66,7 +68,8 @@ def test_c_curve_angle_to_generatrix_is_beta(beta_deg):
 @pytest.mark.parametrize("beta_deg", [35.0, -25.0])
 @pytest.mark.parametrize("psi", [0.1, -0.3, 0.6])
 def test_conical_log_spiral_measured_angle(beta_deg, psi):
-    """ERRATA §0.2 item 18: the psi = const curve lies on cos g = cos psi cos d with tan b_g = tan b sin g/sin d."""
+    """docs/theory/logspiral.md, Eq. (S11): the psi = const curve lies on cos g = cos psi cos d with tan b_g = tan b sin
+    g/sin d."""
     rho0, d, b = 100.0, np.radians(20.0), np.radians(beta_deg)
     phi = np.linspace(-0.4, 0.4, 9)
     p = curves.conical_log_spiral(phi, psi, rho0, d, b)
@@ -84,7 +87,7 @@ def test_conical_log_spiral_measured_angle(beta_deg, psi):
 
 @pytest.mark.parametrize("beta_deg", [35.0, -35.0])
 def test_taper_curve_angle_and_cone(beta_deg):
-    """Seed 002 Eq. (33) with r = r0 exp(phi sin a cot b) (ERRATA §2.1 item 15)."""
+    """Seed 002 Eq. (33) with r = r0 exp(phi sin a cot b) (docs/theory/gearing.md#conjugacy)."""
     r0, a, b = 30.0, np.radians(19.0), np.radians(beta_deg)
     phi = np.linspace(-0.6, 0.6, 13)
     p = curves.taper_curve(phi, r0, a, b)
@@ -98,7 +101,8 @@ def test_taper_curve_angle_and_cone(beta_deg):
 
 @pytest.mark.parametrize("shaft_deg, z1, z2, beta_deg", [(90.0, 23, 65, 35.0), (75.0, 17, 41, -30.0)])
 def test_mating_taper_curves_touch_on_the_pitch_line_while_rolling(shaft_deg, z1, z2, beta_deg):
-    """ERRATA §2.1 item 16: curve 2 on pitch cone 2, same spiral angle, opposite hand, touching on the pitch line."""
+    """docs/theory/gearing.md#li-surface (mating pitch curve) and Eq. (M9): curve 2 on pitch cone 2, same spiral angle,
+    opposite hand, touching on the pitch line."""
     S, b = np.radians(shaft_deg), np.radians(beta_deg)
     g1 = np.arctan2(np.sin(S), z2 / z1 + np.cos(S))
     g2 = S - g1

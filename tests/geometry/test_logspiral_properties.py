@@ -1,4 +1,5 @@
-"""Property tests of LogSpiralFlank (seed 000 Eq. (16), ERRATA §0.1) in the public conventions."""
+"""Property tests of LogSpiralFlank (seed 000 Eq. (16), docs/theory/logspiral.md, Eq. (S2) (#surface)) in the public
+conventions."""
 
 import numpy as np
 import pytest
@@ -18,7 +19,7 @@ def flank_and_points(draw):
     flank = LogSpiralFlank(rho0, delta, beta)
     rng = np.random.default_rng(draw(st.integers(0, 2**31 - 1)))
     psi = flank.psi_sign(side) * rng.uniform(0.02, 1.2, 30)
-    psi = psi[np.abs(psi - beta) < np.pi / 2 - 0.05]  # region where n_out = sign(psi) n holds (ERRATA §0.1)
+    psi = psi[np.abs(psi - beta) < np.pi / 2 - 0.05]  # n_out = sign(psi) n (docs/theory/logspiral.md, Eq. (S9))
     phi = rng.uniform(-1.0, 1.0, psi.size)
     return flank, side, flank.varphi_of(psi, phi), phi
 
@@ -45,7 +46,7 @@ def test_invariants(data):
     # principal directions follow the parameter lines: e1 || r_varphi, e2 toe -> heel (e2 . r > 0)
     assert np.all(np.einsum("...i,...i", g.e2, g.point) > 0)
     assert flank.side_of(varphi, phi) is side
-    if side is Side.CONVEX:  # convex flank: both reported curvatures positive (elliptic, ERRATA §0.1 table)
+    if side is Side.CONVEX:  # convex flank: both curvatures positive (elliptic, docs/theory/logspiral.md, Eq. (S9))
         assert np.all(g.k1 > 0) and np.all(g.k2 > 0)
     else:  # concave flank: convex profile, concave lengthwise (hyperbolic)
         assert np.all(g.k1 > 0) and np.all(g.k2 < 0)
@@ -54,7 +55,8 @@ def test_invariants(data):
 @settings(max_examples=30, deadline=None)
 @given(flank_and_points())
 def test_f_and_m_vanish_numerically_and_normal_is_outward_cross_product(data):
-    """F = M = 0 measured by the generic module (ERRATA §0.2 item 16); n_out = sign(beta) unit(r_varphi x r_phi)."""
+    """F = M = 0 measured by the generic module (docs/theory/logspiral.md, Eqs. (S6)-(S7)); n_out = sign(beta)
+    unit(r_varphi x r_phi)."""
     flank, side, varphi, phi = data
     if varphi.size == 0:
         return

@@ -1,8 +1,11 @@
-"""ERRATA §0.4 reference values (rho0 = 100 mm, delta = 20 deg, beta = 35 deg), both branches.
+"""Reference values P1-P4 of docs/theory/logspiral.md#reference-values (rho0 = 100 mm, delta = 20 deg, beta = 35 deg),
+both branches.
 
-Oracle: column (B) of ERRATA §0.4 -- the raw seed 000 Eq. (16) differentiated by mpmath at 50 digits, n oriented
+Oracle: column (B) of docs/theory/logspiral.md#reference-values -- the raw seed 000 Eq. (16) differentiated by mpmath at
+50 digits, n oriented
 like the corrected Eq. (21), curvatures 'bend toward n' (papers' convention). Tolerance: 1e-11 relative for the
-closed forms (ERRATA §0.4 recommends rtol ~ 1e-11 against (B)); the generic numerical module (Richardson central
+closed forms (docs/theory/logspiral.md#reference-values recommends rtol ~ 1e-11 against (B)); the generic numerical
+module (Richardson central
 differences) is held to 1e-8 relative on curvatures (task requirement; measured ~1e-10).
 """
 
@@ -15,7 +18,7 @@ from spiralbevel.geometry.diffgeom import surface_geometry
 
 RHO0, DELTA, BETA = 100.0, np.radians(20.0), np.radians(35.0)
 
-# ERRATA §0.4 column (B); (varphi, phi): r, n, E, G, L, N, k1, k2
+# docs/theory/logspiral.md#reference-values column (B); (varphi, phi): r, n, E, G, L, N, k1, k2
 REF = {
     "P1": ((0.5, 0.1), (38.0888936179341, 4.4895117484889, 97.7512227081296),
            (0.56357500736832, -0.705952111174161, 0.42896949518415),
@@ -42,7 +45,7 @@ def _rel(a, b):
 
 
 @pytest.mark.parametrize("name", sorted(REF))
-def test_core_kernel_matches_errata(name):
+def test_core_kernel_matches_reference(name):
     (vp, ph), r, n, E, G, L, N, k1, k2 = REF[name]
     g = core.geometry(vp, ph, RHO0, DELTA, BETA)
     assert _rel(g["r"], r) < RTOL
@@ -52,12 +55,13 @@ def test_core_kernel_matches_errata(name):
 
 
 @pytest.mark.parametrize("name", sorted(REF))
-def test_public_flank_matches_errata_converted(name):
-    """Public conventions: n_out = sign(psi) n, L_out = -sign(psi) L, k_reported = -sign(psi) k (docs/conventions.md)."""
+def test_public_flank_matches_reference_converted(name):
+    """Public conventions: n_out = sign(psi) n, L_out = -sign(psi) L, k_reported = -sign(psi) k
+    (docs/conventions.md)."""
     (vp, ph), r, n, E, G, L, N, k1, k2 = REF[name]
     g = LogSpiralFlank(RHO0, DELTA, BETA).evaluate(vp, ph)
     s = np.sign(g.psi)
-    assert s == (1 if name != "P4" else -1)  # P1-P3 convex branch, P4 concave branch (ERRATA §0.4)
+    assert s == (1 if name != "P4" else -1)  # P1-P3 convex, P4 concave (docs/theory/logspiral.md#reference-values)
     assert _rel(g.point, r) < RTOL
     assert np.max(np.abs(g.normal - s * np.asarray(n))) < RTOL
     assert _rel(g.E, E) < RTOL and _rel(g.G, G) < RTOL
@@ -67,15 +71,16 @@ def test_public_flank_matches_errata_converted(name):
 
 
 @pytest.mark.parametrize("name", sorted(REF))
-def test_generic_numerical_module_matches_errata(name):
+def test_generic_numerical_module_matches_reference(name):
     (vp, ph), r, n, E, G, L, N, k1, k2 = REF[name]
     flank = LogSpiralFlank(RHO0, DELTA, BETA)
     s = -1.0 if name == "P4" else 1.0
-    # orientation of the ERRATA normal n: n = sign(sin psi sin beta) unit(r_varphi x r_phi) (ERRATA §0.2 item 12)
+    # orientation of the normal n of docs/theory/logspiral.md, Eqs. (S4), (S9): n = sign(sin psi sin beta) unit(r_varphi
+    # x r_phi) (docs/theory/logspiral.md, Eq. (S4))
     g = surface_geometry(flank.point, vp, ph, normal_sign=s)
     assert np.max(np.abs(g.normal - n)) < 1e-10
     assert _rel(g.E, E) < 1e-10 and _rel(g.G, G) < 1e-10
-    # generic module: L = -r_uu . n, so L_generic = -L_errata; curvatures likewise change sign
+    # generic module: L = -r_uu . n, so L_generic = -L_reference; curvatures likewise change sign
     assert _rel(-g.L, L) < 1e-8 and _rel(-g.N, N) < 1e-8
     assert _rel(-g.k1, k1) < 1e-8 and _rel(-g.k2, k2) < 1e-8
     assert abs(g.F) < 1e-9 * np.sqrt(E * G) and abs(g.M) < 1e-9 * abs(N)

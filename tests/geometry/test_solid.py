@@ -1,8 +1,10 @@
 """Closed tooth and gear meshes from flank grids (spiralbevel.geometry.solid).
 
-Flank grids come from the closed-form log-spiral kernel (seed 000 Eq. (16), ERRATA §0.1): rho0 = 100 mm, delta = 20°,
+Flank grids come from the closed-form log-spiral kernel (seed 000 Eq. (16), docs/theory/logspiral.md, Eq. (S2)
+(#surface)): rho0 = 100 mm, delta = 20°,
 beta = 35°; convex flank psi in [0.05, 0.3], phi in [0, 0.3]; the concave flank is the other branch (psi < 0) turned
-by Delta about +z. Its outward normal is -n (the ERRATA normal n is outward on the convex branch; checked below).
+by Delta about +z. Its outward normal is -n (the docs/theory/logspiral.md, Eqs. (S4), (S9) normal n is outward on the
+convex branch; checked below).
 
 Independent reference: in spherical coordinates (rho, theta, alpha) about the apex this tooth is the set
 rho0 <= rho <= rho_heel, theta_root <= theta <= theta_face, alpha_convex <= alpha <= alpha_convex + w(psi) with

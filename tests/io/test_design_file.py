@@ -40,7 +40,8 @@ def _problems(text):
 
 def test_every_problem_listed_with_field_value_range_unit():
     text = MINIMAL.replace("pinion_teeth = 23", "pinion_teeth = -3").replace(
-        "mean_spiral_angle = \"30°00'\"", "mean_spiral_angle = 95").replace("face_width = 37", "face_width = 37\ncolour = 1")
+        "mean_spiral_angle = \"30°00'\"", "mean_spiral_angle = 95").replace(
+        "face_width = 37", "face_width = 37\ncolour = 1")
     probs, message = _problems(text)
     assert set(probs) == {"gear_set.pinion_teeth", "gear_set.mean_spiral_angle", "gear_set.colour"}
     p = probs["gear_set.mean_spiral_angle"]

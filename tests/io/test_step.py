@@ -1,6 +1,7 @@
 """STEP export with exact B-spline flank surfaces (spiralbevel.io.step, optional extra ``cad``).
 
-The reference points are evaluated exactly from the closed-form log-spiral kernel (seed 000 Eq. (16), ERRATA §0.1)
+The reference points are evaluated exactly from the closed-form log-spiral kernel (seed 000 Eq. (16),
+docs/theory/logspiral.md, Eq. (S2) (#surface))
 at the grid nodes AND midway between them (in phi, in psi and at cell centres), then projected onto the surfaces read
 back from the file with OpenCascade's GeomAPI_ProjectPointOnSurf: the distance must stay <= 1e-3 mm.
 """

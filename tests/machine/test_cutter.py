@@ -1,4 +1,5 @@
-"""Head cutter (seed 001 Eqs. (7)-(10), ERRATA §1.1): normals, fillet junction, principal curvatures, validation."""
+"""Head cutter (seed 001 Eqs. (7)-(10), docs/theory/generation.md, Eqs. (G1)-(G3)): normals, fillet junction, principal
+curvatures, validation."""
 
 import math
 
@@ -17,14 +18,14 @@ def _cutter(blade, rp=math.inf):
 
 
 def test_blade_sides_and_signs():
-    # ERRATA §1.1: s = +1 outer blade / concave side, s = -1 inner blade / convex side
+    # docs/theory/generation.md, Eqs. (G1)-(G3): s = +1 outer blade / concave side, s = -1 inner blade / convex side
     assert Blade.OUTER.sign == 1 and Blade.OUTER.side is Side.CONCAVE
     assert Blade.INNER.sign == -1 and Blade.INNER.side is Side.CONVEX
     assert Blade.for_side(Side.CONVEX) is Blade.INNER
 
 
 def test_nominal_radius_table4():
-    # seed 001 Table 4: R_h2 = 113.155 = R_c2 - W/2 with R_c2 = 114.3, W = 2.29 (ERRATA §1.2, exact)
+    # seed 001 Table 4: R_h2 = 113.155 = R_c2 - W/2 with R_c2 = 114.3, W = 2.29 (docs/theory/example.md, exact)
     assert _cutter(Blade.INNER).nominal_radius == pytest.approx(114.3, abs=1e-12)
 
 
@@ -52,7 +53,8 @@ def test_straight_and_fillet_match_printed_equations(blade):
 @pytest.mark.parametrize("blade", list(Blade))
 @pytest.mark.parametrize("rp", [math.inf, 250.0])
 def test_normals_are_normalised_cross_products(blade, rp):
-    # Eqs. (9)-(10): n_h = r_u x r_theta / |.| (ERRATA: derivative of the fillet w.r.t. lambda)
+    # Eqs. (9)-(10): n_h = r_u x r_theta / |.| (docs/theory/generation.md#head-cutter: derivative of the fillet w.r.t.
+    # lambda)
     c = _cutter(blade, rp)
     u0, uj = c.fillet_range
     u = np.array([u0 + 0.2, 0.5 * (u0 + uj), uj + 0.3, uj + 5.0])

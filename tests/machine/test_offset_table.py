@@ -1,6 +1,7 @@
 """Variable blank offset from a table of nodes (piecewise linear or cubic spline): the law itself, the sign and
 validation in MachineSettings, and — the point of it — that dE_m/dt enters the relative velocity of generation
-(ERRATA §1.1 Eq. (15)). The generation tests already cover the polynomial law (tests/generation/test_flank.py)."""
+(docs/theory/generation.md, Eqs. (G5)-(G6)). The generation tests already cover the polynomial law
+(tests/generation/test_flank.py)."""
 
 import math
 import os
@@ -76,7 +77,8 @@ def test_settings_table_sign_validation_and_dict():
 def _segment_settings(settings, i, x, y):
     """The constant-rate law of segment i as base offset + polynomial (for the independent chain)."""
     sl = (y[i + 1] - y[i]) / (x[i + 1] - x[i])
-    return SimpleNamespace(**{**settings.to_dict(degrees=False), "blank_offset": settings.blank_offset + y[i] - sl * x[i],
+    return SimpleNamespace(**{**settings.to_dict(degrees=False),
+                              "blank_offset": settings.blank_offset + y[i] - sl * x[i],
                               "blank_offset_poly": (sl,), "modified_roll": settings.modified_roll})
 
 

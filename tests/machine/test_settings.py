@@ -1,4 +1,5 @@
-"""Machine settings: seed 001 Table 4 from Table 1 (ERRATA §1.2), sign pins of docs/conventions.md, validation."""
+"""Machine settings: seed 001 Table 4 from Table 1 (docs/theory/example.md), sign pins of docs/conventions.md,
+validation."""
 
 import math
 
@@ -25,7 +26,8 @@ def gear_t4():
 def test_from_blank_reproduces_table4(blank, gear_t4):
     cutter, t4 = gear_t4
     s = MachineSettings.from_blank(blank, Member.GEAR, Side.CONVEX, cutter)
-    # seed 001 Table 4: S_r2 = 115.078 mm (ERRATA check column: 115.079 from A = 115.8417), q2 = 59 deg 20' 07"
+    # seed 001 Table 4: S_r2 = 115.078 mm (docs/theory/example.md#table-4 check column: 115.079 from A = 115.8417), q2 =
+    # 59 deg 20' 07"
     assert blank.Rm * math.cos(blank.theta_f2) == pytest.approx(115.8417, abs=5e-5)
     assert s.radial_setting == pytest.approx(115.078, abs=1.5e-3)
     assert math.degrees(s.cradle_angle) * 3600 == pytest.approx((59 * 60 + 20) * 60 + 7, abs=0.5)
@@ -96,7 +98,7 @@ def test_radial_setting_moves_cutter_away():
         sol = dict(phi=np.array(0.0), psi=np.array(0.3), rho=np.array(0.0), z=np.array(0.0))
         c = _g.contact_point(sol, mp)           # rho = 0: the cutter centre
         assert np.hypot(c[0], c[1]) == pytest.approx(S, rel=1e-15)
-    # at psi_c = 0 the centre is S_r(-cos q, sin q, 0) on the left-hand machine (ERRATA §3.1 step 1)
+    # at psi_c = 0 the centre is S_r(-cos q, sin q, 0) on the left-hand machine (docs/theory/generation.md, Eq. (G5))
     sol = dict(phi=np.array(0.0), psi=np.array(0.0), rho=np.array(0.0), z=np.array(0.0))
     np.testing.assert_allclose(_g.contact_point(sol, MachineSettings(100.0, 0.5, 1.0).kernel_params()),
                                [-100 * math.cos(0.5), 100 * math.sin(0.5), 0.0], atol=1e-13)
@@ -132,7 +134,8 @@ def test_machine_centre_to_back_shifts_along_axis(blank):
 
 
 def test_blank_offset_direction_in_kernel():
-    # right-hand machine: A_i = (0, E_m, -X_B) (ERRATA §1.1); the kernel works on the mirrored left-hand machine
+    # right-hand machine: A_i = (0, E_m, -X_B) (docs/theory/generation.md, Eq. (G5)); the kernel works on the mirrored
+    # left-hand machine
     mp = MachineSettings(100.0, 1.0, 1.0, sliding_base=0.2, blank_offset=3.0, blank_offset_poly=(1.0,)).kernel_params()
     E, dE, _ = _g.offset(np.array(0.5), mp)
     assert E == pytest.approx(-3.5) and dE == pytest.approx(-1.0)

@@ -16,7 +16,7 @@ class Flank:
 
 
 DELTA = math.radians(20.0)
-BETA = math.radians(32.6146071483)  # ERRATA §0.1 example: beta_plane of Z 23/65, beta_m = 35 deg
+BETA = math.radians(32.6146071483)  # docs/theory/logspiral.md, Eq. (S12), example: beta_plane of Z 23/65, beta_m 35 deg
 
 
 def make(beta_sign: int, psi_sign: int, psi=(0.3, 0.5), phi=(0.0, 0.6), rho0=100.0, delta=DELTA, beta=BETA):

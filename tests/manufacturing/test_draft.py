@@ -1,4 +1,5 @@
-"""Forging draft (seed 000 §5.1): corrected inequalities of ERRATA §0.2 item 24, area fraction and its convergence."""
+"""Forging draft (seed 000 §5.1): corrected inequalities of docs/theory/logspiral.md, Eq. (S13), area fraction and its
+convergence."""
 
 from __future__ import annotations
 
@@ -31,7 +32,8 @@ def _raw_point(varphi, phi, rho0, delta, beta):
 
 
 def _outward_normal_fd(varphi, phi, f, h=1e-5):
-    """Outward normal from finite differences of the raw surface, oriented without the ERRATA sign rule: the
+    """Outward normal from finite differences of the raw surface, oriented without the docs/theory/logspiral.md, Eqs.
+    (S4), (S9) sign rule: the
     involute profile (the varphi-curve) is convex, so its second derivative points into the material."""
     args = (f.rho0, f.base_cone_angle, f.spiral_angle)
     P = lambda a, b: _raw_point(a, b, *args)  # noqa: E731
@@ -46,7 +48,7 @@ def _outward_normal_fd(varphi, phi, f, h=1e-5):
 @pytest.mark.parametrize("beta_sign", [1, -1])
 @pytest.mark.parametrize("psi_sign", [1, -1])
 def test_corrected_inequalities_eight_sign_cases(beta_sign, psi_sign):
-    # hand x branch x (|psi| below / above |beta|) = 8 cases, ERRATA §0.2 item 24
+    # hand x branch x (|psi| below / above |beta|) = 8 cases, docs/theory/logspiral.md, Eq. (S13)
     flank, domain = make(beta_sign, psi_sign, psi=PSI_WIDE)
     res = draft_map(flank, domain, n_phi=7, n_psi=41)
     convex = psi_sign == beta_sign

@@ -61,7 +61,7 @@ def test_grid_layout_on_generated_flank(flanks, key):
     np.testing.assert_allclose(h_top, ol.h_face(R[:, 0]), atol=1e-9)
     uj = f.cutter.fillet_range[1]
     for i in (0, 4, 8):
-        def dR(psi):
+        def dR(psi, i=i):
             p = f.evaluate(uj, psi, curvature=False).points
             return _Rh(ol.delta, p)[0] - R[i, 0]
         psi = brentq(dR, g.v[i, 0] - 0.05, g.v[i, 0] + 0.05, xtol=1e-14)
@@ -85,7 +85,7 @@ def test_logspiral_grid_closed_form(logspiral):
     rho = np.linalg.norm(g.points, axis=-1)
     nu = np.arctan2(np.hypot(g.points[..., 0], g.points[..., 1]), g.points[..., 2])
     np.testing.assert_allclose(rho, np.linspace(88.0, 112.0, 7)[:, None] * np.ones(4), atol=1e-9)  # 85..115, 10 %
-    b = fl.domain  # cone angles of the root and face cones: cos nu = cos psi cos delta (ERRATA §0.3)
+    b = fl.domain  # root and face cone angles: cos nu = cos psi cos delta (docs/theory/logspiral.md, Eq. (S10))
     d = fl.surface.base_cone_angle
     nu_root, nu_face = sorted(np.arccos(np.cos([b.psi_min, b.psi_max]) * np.cos(d)))
     np.testing.assert_allclose(nu, np.ones((7, 1)) * (nu_root + (nu_face - nu_root) * np.linspace(0.2, 0.8, 4)),

@@ -18,7 +18,8 @@ R_TOOL, H = 3.0, 0.01
 
 
 def _cl(p_flank, psi_sign, vphi, phi, R):
-    """Ball centres r + R n_out straight from the ERRATA kernel (n_out = sign(psi) n); vphi, phi broadcast."""
+    """Ball centres r + R n_out straight from the docs/theory/logspiral.md, Eqs. (S4), (S9) kernel (n_out = sign(psi)
+    n); vphi, phi broadcast."""
     g = logspiral.geometry(vphi, phi, p_flank.rho0, p_flank.base_cone_angle, p_flank.spiral_angle)
     return g["r"] + R * psi_sign * g["n"]
 

@@ -1,4 +1,5 @@
-"""Test helpers: log-spiral flanks from the closed-form ``_core`` kernel and the pairs of ERRATA §2.2."""
+"""Test helpers: log-spiral flanks from the closed-form ``_core`` kernel and the pairs of docs/theory/gearing.md, Eqs.
+(M1)-(M8)"""
 
 from __future__ import annotations
 
@@ -10,7 +11,8 @@ from spiralbevel._core import logspiral as ls
 from spiralbevel._core import meshing as _m
 from spiralbevel.meshing.kinematics import BevelPairKinematics
 
-#: (shaft angle deg, z1, z2, beta deg) — pairs named in ERRATA §2.2, beta = spiral parameter of Eq. (16)
+#: (shaft angle deg, z1, z2, beta deg) — pairs named in docs/theory/gearing.md, Eqs. (M1)-(M8), beta = spiral parameter
+# of Eq. (16)
 PAIRS = [
     (90.0, 23, 65, 35.0),
     (90.0, 23, 65, -30.0),
@@ -19,7 +21,7 @@ PAIRS = [
     (105.0, 12, 31, 25.0),
     (105.0, 12, 31, -25.0),
 ]
-ALPHA_T = np.radians(20.0)  # transverse pressure angle: sin d_i = sin g_i cos alpha_t (ERRATA §0.1)
+ALPHA_T = np.radians(20.0)  # transverse: sin d_i = sin g_i cos alpha_t (docs/theory/logspiral.md, Eq. (S12))
 
 
 def flank(rho0, delta, beta):

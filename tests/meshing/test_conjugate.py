@@ -33,7 +33,8 @@ def test_nearest_points_on_sphere_match_radial_projection():
 
 
 def test_nearest_points_with_numerical_normals_and_start_values():
-    plane = lambda u, v: np.stack([u, v, 0.1 * u + 0.2 * v], -1)  # points only
+    def plane(u, v):
+        return np.stack([u, v, 0.1 * u + 0.2 * v], -1)  # points only
     q = np.array([[1.0, 2.0, 5.0], [-3.0, 0.5, -2.0]])
     foot = nearest_points(q, plane, ((-10, 10), (-10, 10)), uv0=[[0.0, 0.0], [0.0, 0.0]])
     nrm = np.array([-0.1, -0.2, 1.0]) / np.linalg.norm([-0.1, -0.2, 1.0])

@@ -18,7 +18,7 @@ from spiralbevel.meshing.kinematics import BevelPairKinematics
 D = np.radians
 
 
-def _pair(hand, z1=23, z2=65, S=D(90), an=D(20), bm=D(35)):
+def _pair(hand, z1=23, z2=65, S=np.radians(90), an=np.radians(20), bm=np.radians(35)):
     g1 = np.arctan2(np.sin(S), z2 / z1 + np.cos(S))
     m, at = 2 * 100.0 * np.sin(g1) / z1, np.arctan(np.tan(an) / np.cos(bm))
     bounds = []
@@ -40,7 +40,8 @@ def seed001():
 @pytest.mark.parametrize("hand", [Hand.RIGHT, Hand.LEFT])
 @pytest.mark.parametrize("side", [Side.CONCAVE, Side.CONVEX])
 def test_conjugate_logspiral_pair_has_zero_easeoff(hand, side):
-    """Seed 002 / ERRATA §2.2: the designed log-spiral flanks are exactly conjugate (line contact)."""
+    """Seed 002 / docs/theory/gearing.md, Eqs. (M1)-(M8): the designed log-spiral flanks are exactly conjugate (line
+    contact)."""
     pair, kin = _pair(hand)
     e = easeoff(pair.flank(Member.PINION, side), pair.flank(Member.GEAR, side.mate), kin, n_face=9, n_profile=5)
     assert np.max(np.abs(e.values)) < 1e-8
@@ -123,27 +124,27 @@ def test_conjugate_is_the_extremal_azimuth_of_the_gear_family(seed001):
         p2 = gear.evaluate(e.gear_u[i, j], e.gear_v[i, j], curvature=False).points
 
         # roll angle at which this gear point crosses the plane z = axial (start value for the scan only)
-        def image_axial(phi1):
+        def image_axial(phi1, p2=p2, ax=ax):
             return (to_pinion(phi1) @ p2)[2] - ax
 
         phis = np.linspace(-np.pi, np.pi, 721)
         vals = np.array([image_axial(p) for p in phis])
         roots = [brentq(image_axial, phis[k], phis[k + 1], xtol=1e-14) for k in np.nonzero(np.diff(np.sign(vals)))[0]]
 
-        def image_az(phi1):
+        def image_az(phi1, p2=p2):
             q = to_pinion(phi1) @ p2
             return np.arctan2(q[1], q[0])
 
         phi_c = min(roots, key=lambda r: abs(np.angle(np.exp(1j * (image_az(r) - conj_az)))))
 
-        def az_of(phi1):  # azimuth where the moving gear flank cuts the circle (axial, radius)
+        def az_of(phi1, ax=ax, rad=rad):  # azimuth where the moving gear flank cuts the circle (axial, radius)
             p, _, _, _ = gear_in_pinion_frame(phi1).locate(np.array([ax]), np.array([rad]), tol=1e-12)
             return float(np.arctan2(p[0, 1], p[0, 0]))
 
         a0, a1, a2 = (az_of(phi_c + s) for s in (-0.01, 0.0, 0.01))
         sign = 1.0 if a0 + a2 - 2 * a1 > 0 else -1.0  # minimum or maximum
-        res = minimize_scalar(lambda p: sign * az_of(p), bounds=(phi_c - 0.02, phi_c + 0.02), method="bounded",
-                              options=dict(xatol=1e-9))
+        res = minimize_scalar(lambda p, sign=sign: sign * az_of(p), bounds=(phi_c - 0.02, phi_c + 0.02),
+                              method="bounded", options=dict(xatol=1e-9))
         extremal = sign * res.fun
         assert abs(np.angle(np.exp(1j * (extremal - conj_az)))) * rad < 1e-8  # mm along the circle
 

@@ -108,7 +108,8 @@ def test_numerical_principal_curvatures_match_closed_form_logspiral():
     s = pair.pinion
     q = np.array(s.reference_params)
     g = ls.geometry(q[0], q[1], s.rho0, s.delta, s.beta)
-    # ERRATA convention (k > 0 toward n) -> ours (convex positive w.r.t. n_out = sign(psi) n): k_ours = -sign(psi) k
+    # the convention of docs/theory/logspiral.md#flank-types (k > 0 toward n) -> ours (convex positive w.r.t. n_out =
+    # sign(psi) n): k_ours = -sign(psi) k
     closed = np.sort(-np.sign(g["psi"]) * np.array([g["k1"], g["k2"]]))
 
     class FD:  # no analytic derivatives: central differences of evaluate

@@ -12,14 +12,15 @@ from spiralbevel.meshing.kinematics import BevelPairKinematics
 
 
 def _c(case):
-    """arccos(tan d1 / tan g1): half the angle between the two planes of action (ERRATA §2.2)."""
+    """arccos(tan d1 / tan g1): half the angle between the two planes of action (docs/theory/gearing.md, Eq. (M7))."""
     return np.arccos(np.tan(case.delta1) / np.tan(case.kin.pitch_angle_pinion))
 
 
 @pytest.mark.parametrize("pair", PAIRS)
 @pytest.mark.parametrize("branch", [1, -1])
 def test_meshing_roots_match_closed_form(pair, branch):
-    # ERRATA §2.2: phi1* = +-arccos(tan d1 / tan g1) - varphi for a seed-000 flank; +1 <-> "+" with outward n, psi>0
+    # docs/theory/gearing.md, Eqs. (M1)-(M8): phi1* = +-arccos(tan d1 / tan g1) - varphi for a seed-000 flank; +1 <->
+    # "+" with outward n, psi>0
     case = make_case(*pair)
     env = solve_envelope(case.surface, case.kin, case.u, case.v, branch=branch)
     varphi = case.u + case.v / np.sin(case.delta1)
@@ -42,7 +43,8 @@ def test_vectorized_roots_equal_per_point_scipy():
     env = solve_envelope(case.surface, case.kin, case.u, case.v)
     r1, n1 = case.surface(case.u, case.v)
     for i, j in [(0, 0), (5, 3), (12, 14), (30, 7), (17, 11)]:
-        f = lambda a: float(case.kin.meshing_function(r1[i, j], n1[i, j], a))
+        def f(a, i=i, j=j):
+            return float(case.kin.meshing_function(r1[i, j], n1[i, j], a))
         x0 = env.phi1[i, j]
         root = brentq(f, x0 - 0.2, x0 + 0.2, xtol=1e-15, rtol=1e-15)
         assert abs(env.phi1[i, j] - root) < 1e-12
@@ -51,7 +53,8 @@ def test_vectorized_roots_equal_per_point_scipy():
 
 
 def test_envelope_condition_by_differentiating_the_family():
-    # independent second method (ERRATA §2.1 item 13): det[r2_u, r2_v, r2_phi1] = 0 at the solved phi1, where
+    # independent second method (docs/theory/gearing.md#conjugacy): det[r2_u, r2_v, r2_phi1] = 0 at the solved phi1,
+    # where
     # r2(u, v, phi1) = M(phi1) r1(u, v) is the family of member-1 surfaces in the gear frame (central differences)
     case = make_case(*PAIRS[4])
     u, v = case.u[::6], case.v[:, ::4]
@@ -81,7 +84,7 @@ def test_envelope_condition_by_differentiating_the_family():
 
 @pytest.mark.parametrize("pair", PAIRS)
 def test_conjugate_of_logspiral_is_mating_logspiral(pair):
-    # ERRATA §2.2 conjugacy theorem: base cones sin d1/sin g1 = sin d2/sin g2 -> envelope is the seed-000 flank
+    # docs/theory/gearing.md, Eqs. (M1)-(M8): base cones sin d1/sin g1 = sin d2/sin g2 -> envelope is the seed-000 flank
     # (d2, beta2 = -beta, psi2 > 0) on the plane +arccos; distance <= 1e-9 mm, 1 - |n.n| <= 1e-12
     case = make_case(*pair)
     env = solve_envelope(case.surface, case.kin, case.u, case.v, branch=1)
@@ -91,11 +94,12 @@ def test_conjugate_of_logspiral_is_mating_logspiral(pair):
     cand, bounds = gear_candidate(env.points, case.delta2, -case.beta)
     rep = compare_conjugate(env.points, env.normals, cand, bounds, tol=1e-12,
                             invariant=lambda x: logspiral_invariant(x, case.delta2, -case.beta))
-    assert rep.max_distance <= 1e-9  # brief; measured <= 1e-12 with tol=1e-12 (ERRATA §2.2: 2.9e-13)
+    assert rep.max_distance <= 1e-9  # measured <= 1e-12 with tol=1e-12 (docs/theory/gearing.md#conjugacy: 2.9e-13)
     assert rep.max_distance <= 1e-12
     assert rep.max_normal_mismatch <= 1e-12
     assert rep.n_outside == 0 and rep.is_conjugate
-    # outward normals: the envelope normal is the outward normal of the psi2 > 0 gear flank (n, ERRATA §0.1)
+    # outward normals: the envelope normal is the outward normal of the psi2 > 0 gear flank (n,
+    # docs/theory/logspiral.md, Eq. (S2) (#surface))
     foot = nearest_points(env.points, cand, bounds)
     assert np.min(np.einsum("ij,ij->i", foot.normals, env.normals.reshape(-1, 3))) > 1 - 1e-12
 
@@ -109,7 +113,8 @@ def test_other_plane_of_action_gives_the_psi_negative_branch(pair):
 
 
 def test_wrong_base_cone_is_reported():
-    # ERRATA §2.2: d2 + 0.5 deg -> invariant spread ~1.3e-3, distance ~0.14 mm, mismatch ~6e-5 (their grid);
+    # docs/theory/gearing.md, Eqs. (M1)-(M8): d2 + 0.5 deg -> invariant spread ~1.3e-3, distance ~0.14 mm, mismatch
+    # ~6e-5 (their grid);
     # here the spread, distance and mismatch must be far above the conjugate-case values and the report must flag it
     case = make_case(*PAIRS[0])
     env = solve_envelope(case.surface, case.kin, case.u, case.v)
@@ -162,7 +167,7 @@ def test_contact_line_equals_per_point_brentq():
     # the window excludes the other plane of action (at psi ~ 0.01 for u = -0.3)
     cl = solve_contact_line(case.surface, case.kin, phi1, u, (0.05, 1.0))
     for k in range(u.size):
-        def f(vv):
+        def f(vv, k=k):
             r, n = case.surface(u[k], vv)
             return float(case.kin.meshing_function(r, n, phi1))
 
@@ -205,7 +210,8 @@ def test_finite_difference_normals():
 def test_no_contact_raises_with_position():
     # axial plane y = 0 (n = e_y): f = -v sin g1 cos phi1 + u cos g1 has no root when u / v > tan g1
     kin = BevelPairKinematics(np.pi / 2, 23, 65)
-    plane = lambda u, v: (np.stack([u, 0 * u, v], -1), np.stack([0 * u, 1 + 0 * u, 0 * u], -1))
+    def plane(u, v):
+        return (np.stack([u, 0 * u, v], -1), np.stack([0 * u, 1 + 0 * u, 0 * u], -1))
     with pytest.raises(NoContactError, match="index"):
         solve_envelope(plane, kin, np.array([10.0, 80.0]), np.array([100.0, 100.0]))
     res = solve_envelope(plane, kin, np.array([10.0, 80.0]), np.array([100.0, 100.0]), strict=False)
@@ -239,7 +245,8 @@ def test_rigid_rotation_of_the_flank_only_shifts_phi1():
     case = make_case(*PAIRS[1], n_u=5, n_v=4)
     a = 0.37
     Rz = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
-    turned = lambda u, v: tuple(x @ Rz.T for x in case.surface(u, v))
+    def turned(u, v):
+        return tuple(x @ Rz.T for x in case.surface(u, v))
     e0 = solve_envelope(case.surface, case.kin, case.u, case.v)
     e1 = solve_envelope(turned, case.kin, case.u, case.v)
     assert np.max(np.abs(wrap(e1.phi1 - (e0.phi1 - a)))) < 1e-12

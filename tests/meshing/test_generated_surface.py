@@ -99,7 +99,7 @@ def test_derivatives_with_modified_roll_offset_law_and_arc_blade():
                                                np.array([0.0, 0.3, 0.0])))  # nodes off the psi grid (kinks)
         Rc = 60.0
 
-        def rn(q):
+        def rn(q, cp=cp, mp=mp, Rc=Rc, s_blade=s_blade):
             sol = _g.solve_contact(q[..., 0], q[..., 1], cp, mp, _g.reference_angle(q[..., 1], mp, Rc))
             r, n_h, _, _ = _g.machine_state(sol, cp, mp)
             return _g.to_member(r, sol["psi"], mp), _g.to_member(-s_blade * n_h, sol["psi"], mp, point=False)

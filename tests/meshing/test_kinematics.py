@@ -40,7 +40,8 @@ def test_frozen():
 
 
 def test_pitch_angle_reference_23_65():
-    # ERRATA §0.1 design example: Z 23/65, S = 90 deg -> g1 = 19.4861295725 deg (10 digits printed)
+    # docs/theory/logspiral.md, Eq. (S2) (#surface) design example: Z 23/65, S = 90 deg -> g1 = 19.4861295725 deg (10
+    # digits printed)
     kin = BevelPairKinematics(np.pi / 2, 23, 65)
     assert np.degrees(kin.pitch_angle_pinion) == pytest.approx(19.4861295725, abs=1e-10)
 
@@ -60,7 +61,7 @@ def test_pitch_cones_roll(shaft, z1, z2):
     w1, w2 = kin.angular_velocity_pinion(1.7), kin.angular_velocity_gear(1.7)
     assert np.allclose(np.cross(w1, 50 * p), np.cross(w2, 50 * p), atol=1e-12)
     assert np.allclose(kin.relative_velocity(50 * p, 1.7), 0.0, atol=1e-12)
-    # w(12) = (w1 cos g1 + w2 cos g2) p (ERRATA §2.2)
+    # w(12) = (w1 cos g1 + w2 cos g2) p (docs/theory/gearing.md, Eqs. (M1)-(M2))
     w12 = kin.relative_angular_velocity(1.7)
     assert np.allclose(w12, 1.7 * (np.cos(g1) + z1 / z2 * np.cos(g2)) * p, atol=1e-13)
 
@@ -79,7 +80,7 @@ def test_transforms_are_rotations_and_match_conventions(shaft, z1, z2, phi1):
     assert np.allclose(kin.gear_to_fixed(phi2) @ [0, 0, 1], kin.gear_axis, atol=1e-14)
     assert np.allclose(kin.pinion_to_gear(phi1), kin.gear_to_fixed(phi2).T @ kin.pinion_to_fixed(phi1),
                        atol=1e-14)
-    # the mapping of the brief/ERRATA §2.2: R_y(-S) R(a2, (z1/z2) phi1) R(a1, phi1)
+    # the mapping of the brief/docs/theory/gearing.md, Eqs. (M1)-(M8): R_y(-S) R(a2, (z1/z2) phi1) R(a1, phi1)
     assert np.allclose(kin.pinion_to_gear(phi1),
                        rot_y(-shaft) @ rot_axis(kin.gear_axis, z1 / z2 * phi1) @ rot_axis([0, 0, 1], phi1),
                        atol=1e-14)
@@ -115,7 +116,8 @@ def test_velocity_form_equals_willis_form(shaft, z1, z2, phi1, xs):
     n = np.array(xs[3:]) + np.array([0.3, -0.2, 1.0])
     n = n / np.linalg.norm(n)
     g1, g2 = kin.pitch_angle_pinion, kin.pitch_angle_gear
-    # n . v(12) with v(12) = v(1) - v(2) built from the member velocities (seed 002 Eqs. 7-9, ERRATA §2.1 item 6)
+    # n . v(12) with v(12) = v(1) - v(2) built from the member velocities (seed 002 Eqs. 7-9,
+    # docs/theory/gearing.md#conjugacy)
     v1 = np.cross(kin.angular_velocity_pinion(2.0), r)
     v2 = np.cross(kin.angular_velocity_gear(2.0), r)
     lhs = np.dot(n, v1 - v2)

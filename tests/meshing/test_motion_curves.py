@@ -1,4 +1,5 @@
-"""Motion curves and the predesigned combined motion curve of seed 001 §2 (ERRATA §1.1 Eqs. (1)-(6), §1.2)."""
+"""Motion curves and the predesigned combined motion curve of seed 001 §2 (Eqs. (1)-(6); docs/theory/tca.md, Eqs.
+(T1)-(T4); docs/theory/example.md#table-2)."""
 
 import numpy as np
 import pytest
@@ -34,7 +35,7 @@ def test_parabola_general_and_printed_symmetric_form():
     b1, b2, b3 = -0.05, 2e-5, 0.08
     np.testing.assert_allclose(parabola_through([b1, 0.0, b3], b1, b2, b3), [0, b2, 0], atol=1e-20)
     x = np.linspace(-0.1, 0.1, 7)
-    # ERRATA §1.1 Eq. (4): the printed b2 - (b2/b1^2) x^2 is the case b3 = -b1
+    # docs/theory/tca.md, Eq. (T3): the printed b2 - (b2/b1^2) x^2 is the case b3 = -b1
     np.testing.assert_allclose(parabola_through(x, -0.05, b2, 0.05), b2 - b2 / 0.05**2 * x**2, rtol=1e-12)
 
 

@@ -1,5 +1,6 @@
 """TCA engine: vectorized solver vs per-position scipy fsolve, line contact of the conjugate log-spiral pair,
-parabolic TE of a crowned pair, transfer points, edge contact, errors (seed 001 §4-5, ERRATA §1.1 Eq. (16))."""
+parabolic TE of a crowned pair, transfer points, edge contact, errors (seed 001 §4-5, Eq. (16); docs/theory/tca.md, Eq.
+(T5))."""
 
 import warnings
 
@@ -51,7 +52,8 @@ def test_conjugate_pair_line_contact_zero_te(pair, kin):
     res = solve_tca(pair.pinion, pair.gear, kin)
     ok = res.status_pairs != ContactStatus.NO_CONTACT
     assert ok.all()
-    # seed 002 conjugacy theorem (ERRATA §2.2): exact conjugate flanks -> zero TE for every pair
+    # seed 002 conjugacy theorem (docs/theory/gearing.md, Eqs. (M1)-(M8)): exact conjugate flanks -> zero TE for every
+    # pair
     assert np.max(np.abs(res.te_pairs)) < 1e-12
     assert np.all(res.status == ContactStatus.LINE)
     assert np.all(np.isinf(res.semi_axes[:, 0]))

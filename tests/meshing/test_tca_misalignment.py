@@ -73,7 +73,8 @@ def test_gear_rotation_matches_first_order_gap_estimate(setup, mis):
 
 def test_pinion_axial_displacement_moves_contact_lengthwise_and_in_profile(setup):
     """Delta A1 > 0 (pinion moved along +a1, away from the apex). On the convex pinion flank the outward normal
-    leans away from the apex (n . r/|r| = sin(beta) > 0, ERRATA §0.1) more than the pressure angle tilts it toward
+    leans away from the apex (n . r/|r| = sin(beta) > 0, docs/theory/logspiral.md, Eq. (S2) (#surface)) more than the
+    pressure angle tilts it toward
     the apex, so n1 . a1 > 0: the flank is pushed into the gear flank and the gear advances (on the opposite flank
     the lengthwise component changes sign and the gear lags: together the backlash grows). The mean contact on the
     pinion moves toward the heel (larger cone distance) and toward the pinion root (smaller psi), i.e. both along the

@@ -7,7 +7,6 @@ load, independent of Poisson's ratio.
 """
 
 import math
-from types import SimpleNamespace
 
 import numpy as np
 import pytest

@@ -24,7 +24,8 @@ def exact_displacement(x):
     X, Y = x
     u = (-P * X ** 2 * Y / (2 * E * I) - NU * P * Y ** 3 / (6 * E * I) + P * Y ** 3 / (6 * I * G)
          + (P * L ** 2 / (2 * E * I) - P * C ** 2 / (2 * I * G)) * Y)
-    v = NU * P * X * Y ** 2 / (2 * E * I) + P * X ** 3 / (6 * E * I) - P * L ** 2 * X / (2 * E * I) + P * L ** 3 / (3 * E * I)
+    v = NU * P * X * Y ** 2 / (2 * E * I) + P * X ** 3 / (6 * E * I) \
+        - P * L ** 2 * X / (2 * E * I) + P * L ** 3 / (3 * E * I)
     return np.stack([u, v])
 
 

@@ -1,4 +1,5 @@
-"""Kernels of face-milling generation on a cradle-type machine (seed 001 §3, seed 003, ERRATA §1.1, §3.1, §3.3).
+"""Kernels of face-milling generation on a cradle-type machine (seed 001 §3, seed 003, docs/theory/generation.md, Eqs.
+(G5)-(G8) (and (G13)-(G15) for curvatures)).
 
 Everything here works on float64 arrays (xyz on the trailing axis), mm and rad, and trusts its input. Parameters come
 as two plain dicts built by the user layer: ``cp`` (head cutter, see :func:`cutter_params`) and ``mp`` (machine
@@ -8,14 +9,15 @@ Frames (canonical machine = the one that cuts a LEFT-hand member; a right-hand m
 
 * S_m, machine frame: Z_m = cradle axis k = (0, 0, 1), cradle plane z = 0, root line = -x axis. The cradle turns by
   psi_c about +Z_m; the cutter centre sits at C = S_r e(pi - q + psi_c), e(a) = (cos a, sin a, 0), i.e. at
-  S_r(-cos q, sin q, 0) for psi_c = 0 (ERRATA §3.1 step 1: q measured from the root line).
+  S_r(-cos q, sin q, 0) for psi_c = 0 (docs/theory/generation.md, Eq. (G5): q measured from the root line).
 * Cutter: blade tips in the plane z = 0, cutter body toward -z; a cutter point is C + rho(u) e(phi) + z(u) k with the
   absolute angle phi = pi - q + psi_c + theta (theta measured from the ray O->C, as in seed 001 Eq. (15)).
 * Work axis a = (-cos g, 0, sin g), g = machine root angle, through A = (0, E_m(psi_c), -X_B); the member apex sits at
   A + X_D a. Member frame basis at psi_i = 0: e_x = (sin g, 0, cos g), e_y = (0, 1, 0), e_z = a.
 * The work turns by psi_i(psi_c) about +a; a member point is r_i = R_z(-psi_i) B^T (r_m - A - X_D a).
 
-Blade profile (meridian of the cutter surface of revolution), one parameter u in mm (ERRATA §1.1 Eqs. (7)-(10)): the
+Blade profile (meridian of the cutter surface of revolution), one parameter u in mm (docs/theory/generation.md, Eqs.
+(G1)-(G3)): the
 in-plane cutter normal is n_h = (sin chi, s cos chi) in (radial, axial) components; chi = pi/2 - alpha on the straight
 blade, chi = lambda on the fillet, and varies linearly with u on a circular-arc blade. s = +1 outer blade, -1 inner.
 The straight-blade u is exactly the u of Eq. (7); the fillet continues it by arc length below the junction u_j.
@@ -32,7 +34,8 @@ HALF_PI = 0.5 * np.pi
 # head cutter
 # ----------------------------------------------------------------------------------------------------------------
 def cutter_params(s, alpha, Rh, rho_f, profile_radius=np.inf, profile_ref=0.0):
-    """Derived constants of a blade: fillet junction, fillet centre radius T, arc centre. ERRATA §1.1 Eq. (8).
+    """Derived constants of a blade: fillet junction, fillet centre radius T, arc centre. docs/theory/generation.md,
+    Eqs. (G1)-(G3).
 
     Returns a dict with keys ``s, alpha, Rh, rho_f, rp, up, chi0, chi_j, u_j, u_min, T, rc, zc``.
     """
@@ -107,7 +110,8 @@ def offset(psi, mp):
     """Blank offset E_m(psi_c) and its first two derivatives w.r.t. psi_c (polynomial in psi_c).
 
     Optional additive terms (absent keys change nothing): ``mp["E_table"] = (nodes, values[, second])``, a
-    piecewise-linear or cubic-spline law (see :func:`table_offset`), and ``mp["E_rate"]``, a linear term E_rate psi_c whose value may be an array that
+    piecewise-linear or cubic-spline law (see :func:`table_offset`), and ``mp["E_rate"]``, a linear term E_rate psi_c
+    whose value may be an array that
     broadcasts with ``psi`` (batched solvers give every system its own offset rate; ``mp["E"]`` may then be an array
     too).
     """
@@ -205,7 +209,8 @@ def solve_contact(u, psi, cp, mp, phi_ref):
     """Solve f = n . v = 0 for the cutter angle at given (u, psi_c): P cos phi + Q sin phi + R = 0.
 
     Because r and n are linear in e(phi) and e(phi).(Omega x e(phi)) = 0, the equation of meshing of a surface of
-    revolution is first order in (cos phi, sin phi) for every blade shape, roll law and offset law (ERRATA §1.1
+    revolution is first order in (cos phi, sin phi) for every blade shape, roll law and offset law
+    (docs/theory/generation.md, Eq. (G6); seed 001
     Eq. (15), written as v = Omega x r + w with Omega = k - omega_i a and w = omega_i a x A - E' j).
 
     Returns
@@ -253,7 +258,8 @@ def machine_state(sol, cp, mp):
 
 
 def relative_velocity(r, psi, mp):
-    """v^(h,i) = k x r - omega_i a x (r - A) - E' j (ERRATA §1.1 Eq. (15)), unit cradle rate; also pieces for §3.3."""
+    """v^(h,i) = k x r - omega_i a x (r - A) - E' j (docs/theory/generation.md, Eqs. (G5)-(G6)), unit cradle rate; also
+    pieces for the curvature transfer."""
     a = work_axis(mp)
     _, w_i, dw_i = roll(psi, mp)
     E, dE, ddE = offset(psi, mp)
@@ -301,7 +307,8 @@ def contact_point(sol, mp):
 
 
 # ----------------------------------------------------------------------------------------------------------------
-# curvature transfer, ERRATA §3.3 (exactly that form; the time derivative of v12 at fixed r is added to the
+# curvature transfer, docs/theory/generation.md, Eqs. (G13)-(G15) (#curvature-transfer) (exactly that form; the time
+# derivative of v12 at fixed r is added to the
 # constant-velocity term for modified roll and a variable blank offset, and is zero otherwise)
 # ----------------------------------------------------------------------------------------------------------------
 def transfer_curvature(n, eI, eII, kI, kII, vel):

@@ -2,7 +2,8 @@
 
 The generated point is r_i(u, psi_c) = M(psi_c) (r_m(u, phi, psi_c) - A(psi_c) - X_D a) with the cutter angle
 phi(u, psi_c) the root of the equation of meshing P cos phi + Q sin phi + R = 0 of
-:func:`spiralbevel._core.generation.solve_contact` (seed 001 Eqs. (11)-(15), ERRATA §1.1). Implicit differentiation
+:func:`spiralbevel._core.generation.solve_contact` (seed 001 Eqs. (11)-(15), docs/theory/generation.md, Eqs. (G5)-(G8)
+(and (G13)-(G15) for curvatures)). Implicit differentiation
 of that equation gives phi_u and phi_psi; the chain rule through the blade meridian (u is its arc length, so
 d(rho, z)/du = (s cos chi, -sin chi), the meridian tangent t_h), the cradle, the blank offset and the work rotation
 psi_i(psi_c) gives dr and dn. Same frames and conventions as :mod:`spiralbevel._core.generation`; the result is in the

@@ -1,4 +1,5 @@
-"""Closed-form kernels of the logarithmic-spiral bevel tooth surface (seed 000 Eq. (16), corrected in ERRATA §0.1).
+"""Closed-form kernels of the logarithmic-spiral bevel tooth surface (seed 000 Eq. (16), corrected in
+docs/theory/logspiral.md, Eq. (S2)).
 
 Frame: base-cone apex at the origin, gear axis +z, base-cone half-angle ``delta``. ``beta`` is the spiral angle of the
 planar log spiral in the rolling (base-cone tangent) plane; beta > 0 is a right-hand flank, beta < 0 a left-hand one.
@@ -15,7 +16,7 @@ import numpy as np
 def frame_tw_m(varphi, delta):
     """Unit vectors t (generatrix), w (in the rolling plane, perpendicular to t) and m (plane normal).
 
-    (t, w, m) is right-handed: t x w = m. ERRATA §0.1.
+    (t, w, m) is right-handed: t x w = m. docs/theory/logspiral.md, Eq. (S1)
     """
     c, s = np.cos(varphi), np.sin(varphi)
     sd, cd = np.sin(delta), np.cos(delta)
@@ -49,12 +50,14 @@ def geometry(varphi, phi, rho0, delta, beta):
     -------
     dict of arrays
         ``r, r_varphi, r_phi, n`` (..., 3); ``E, F, G, L, M, N`` (...); ``k1, k2`` (...) 1/mm, curvatures positive
-        when the surface bends toward ``n`` (ERRATA convention); ``e1 = m``, ``e2 = r_phi/|r_phi|`` (...,3);
+        when the surface bends toward ``n`` (the convention of docs/theory/logspiral.md#flank-types); ``e1 = m``, ``e2 =
+        r_phi/|r_phi|`` (...,3);
         ``psi, rho`` (...).
 
     Notes
     -----
-    ERRATA §0.1: r_varphi = rho sin(psi) cos(delta) m; r_phi = rho sin(delta)/sin(beta) [cos(psi-beta) t +
+    docs/theory/logspiral.md, Eqs. (S3)-(S8): r_varphi = rho sin(psi) cos(delta) m; r_phi = rho sin(delta)/sin(beta)
+    [cos(psi-beta) t +
     sin(psi-beta) w]; n = cos(psi-beta) w - sin(psi-beta) t; E = rho^2 sin^2 psi cos^2 delta; G = rho^2 sin^2 delta /
     sin^2 beta; L = -rho sin psi cos(psi-beta) cos^2 delta; N = -rho sin^2 delta / sin beta; k1 = L/E, k2 = N/G.
     e1 = m and e2 = sign(sin beta) r_phi/|r_phi| = cos(psi-beta) t + sin(psi-beta) w, so that e1 x e2 = n.

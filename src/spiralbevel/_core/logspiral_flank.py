@@ -1,14 +1,15 @@
 """Fast closed-form kernel of the log-spiral flank in the public conventions (outward normal, convex = positive).
 
-Same surface as :mod:`spiralbevel._core.logspiral` (seed 000 Eq. (16), ERRATA §0.1), but:
+Same surface as :mod:`spiralbevel._core.logspiral` (seed 000 Eq. (16), docs/theory/logspiral.md, Eq. (S2)), but:
 
-* the normal is the **outward** normal n_out = sign(psi) n (ERRATA §0.1), n the corrected Eq. (21);
+* the normal is the **outward** normal n_out = sign(psi) n (docs/theory/logspiral.md, Eq. (S9) (#flank-types)), n the
+  corrected Eq. (21);
 * L, M, N are taken with the sign convention II = dr . dn_out (i.e. L = -r_uu . n_out), so that the eigenvalues of
   I^-1 II are the reported curvatures, **convex = positive** (docs/conventions.md);
 * e1 = r_varphi/|r_varphi| = sign(psi) m, e2 = cos(psi-beta) t + sin(psi-beta) w (toe -> heel, e2 . r > 0), and
   e1 x e2 = n_out.
 
-Closed forms used (ERRATA §0.1, converted with s = sign(psi)):
+Closed forms used (docs/theory/logspiral.md, Eqs. (S3)-(S9), converted with s = sign(psi)):
 
     E = (rho sin(psi) cos(delta))^2,  F = 0,  G = (rho sin(delta) / sin(beta))^2
     L = rho |sin psi| cos(psi-beta) cos^2(delta),  M = 0,  N = s rho sin^2(delta) / sin(beta)

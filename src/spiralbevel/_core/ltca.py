@@ -3,7 +3,7 @@ Boussinesq (Love) half-space influence coefficients.
 
 Pure functions on float64 arrays; mm, N, N mm, rad. No validation here (see ``spiralbevel.meshing.ltca``).
 
-Load distribution, seed 001 Eq. (18) in the clean form of ERRATA §1.1 "LTCA (18)"::
+Load distribution, seed 001 Eq. (18) in the clean form of docs/theory/ltca.md, Eqs. (L1)-(L4)::
 
     C F + w - d = dtheta h,   h . F = T,   F >= 0,  d >= 0,  F . d = 0
 
@@ -20,7 +20,7 @@ Numerical Optimization, 2nd ed., Alg. 16.3), which terminates finitely for a str
 from __future__ import annotations
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve, LinAlgError
+from scipy.linalg import cho_factor, cho_solve
 
 __all__ = [
     "rect_integral",

@@ -2,7 +2,7 @@
 
 Fixed frame with the common apex O (docs/conventions.md, "Gear-pair frame"): pinion axis a1 = (0, 0, 1), gear axis
 a2 = (sin S, 0, cos S), pitch line p = (sin g1, 0, cos g1). Angular velocities w(1) = w1 a1, w(2) = -w2 a2 with
-w2/w1 = z1/z2, so w(12) = w1 a1 + w2 a2 = (w1 cos g1 + w2 cos g2) p (ERRATA §2.2).
+w2/w1 = z1/z2, so w(12) = w1 a1 + w2 a2 = (w1 cos g1 + w2 cos g2) p (docs/theory/gearing.md, Eqs. (M1)-(M2)).
 
 Meshing equation (Willis form): n . v(12) = 0  <=>  det[r, n, p] = 0. In pinion member coordinates, pinion turned
 by phi1: f = (r1 x n1) . R(a1, -phi1) p. Because R(a1, -phi1) p = (sin g1 cos phi1, -sin g1 sin phi1, cos g1),
@@ -20,7 +20,8 @@ from .rotations import rot_axis, rot_y, rot_z
 
 # --------------------------------------------------------------------------------------------- pair geometry
 def pitch_angles(shaft_angle, z1, z2):
-    """Pitch angles (g1, g2) in rad: tan g1 = sin S / (z2/z1 + cos S), g2 = S - g1 (ERRATA §0.1 recipe, §2.2)."""
+    """Pitch angles (g1, g2) in rad: tan g1 = sin S / (z2/z1 + cos S), g2 = S - g1 (docs/theory/logspiral.md, Eq.
+    (S12))."""
     g1 = np.arctan2(np.sin(shaft_angle), z2 / z1 + np.cos(shaft_angle))
     return g1, shaft_angle - g1
 
@@ -48,7 +49,8 @@ def gear_to_fixed(phi2, shaft_angle):
 def pinion_to_gear(phi1, shaft_angle, ratio):
     """Pinion member frame -> gear member frame with the pinion at phi1 and the gear at phi2 = -ratio phi1.
 
-    M = R_y(-S) R(a2, ratio phi1) R(a1, phi1) = gear_to_fixed(phi2)^T pinion_to_fixed(phi1) (ERRATA §2.2).
+    M = R_y(-S) R(a2, ratio phi1) R(a1, phi1) = gear_to_fixed(phi2)^T pinion_to_fixed(phi1) (docs/theory/gearing.md, Eq.
+    (M6)).
     """
     phi1 = np.asarray(phi1, float)
     return rot_y(-shaft_angle) @ rot_axis(gear_axis(shaft_angle), ratio * phi1) @ rot_z(phi1)
@@ -61,7 +63,7 @@ def willis(r, n, p):
 
 
 def meshing_function(r1, n1, phi1, gamma1):
-    """f(phi1) = (r1 x n1) . R(a1, -phi1) p, in pinion member coordinates (ERRATA §2.2), mm."""
+    """f(phi1) = (r1 x n1) . R(a1, -phi1) p, in pinion member coordinates (docs/theory/gearing.md, Eq. (M5)), mm."""
     phi1 = np.asarray(phi1, float)
     p_rot = np.stack([np.sin(gamma1) * np.cos(phi1), -np.sin(gamma1) * np.sin(phi1),
                       np.cos(gamma1) * np.ones_like(phi1)], -1)
@@ -203,7 +205,8 @@ def logspiral_invariant(points, delta, beta, psi_sign=1.0):
     """ln rho0 of the seed-000 flank (delta, beta) through each point: ln rho - phi sin(delta) cot(beta).
 
     The point is put on the tangent plane Pi(varphi) of the base cone (r . m(varphi) = 0, the root giving
-    sign(psi) = psi_sign), psi = atan2(r . w, r . t), phi = varphi - psi / sin(delta) (ERRATA §0.1). The value is
+    sign(psi) = psi_sign), psi = atan2(r . w, r . t), phi = varphi - psi / sin(delta) (docs/theory/logspiral.md, Eq.
+    (S2)). The value is
     defined modulo 2 pi sin(delta) |cot(beta)| (the spiral's turns); callers reduce it.
 
     Returns

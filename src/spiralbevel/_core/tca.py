@@ -1,8 +1,10 @@
 """Kernels of tooth contact analysis (TCA): assembly transforms, the 5 x 5 contact system and its Jacobian, a batched
 minimum-norm Newton solver, and the relative curvature at a contact point.
 
-Pure functions on float64 arrays (mm, rad, xyz on the trailing axis). Seed 001 Eq. (16) (ERRATA §1.1 "TCA (16)") in
-the pair frame of docs/conventions.md (ERRATA §2.2) with the misalignments of docs/conventions.md "Misalignments".
+Pure functions on float64 arrays (mm, rad, xyz on the trailing axis). Seed 001 Eq. (16) (docs/theory/tca.md, Eq. (T5))
+in
+the pair frame of docs/conventions.md (docs/theory/gearing.md, Eq. (M1)) with the misalignments of docs/conventions.md
+"Misalignments".
 
 Unknowns per system: x = (q1_0, q1_1, q2_0, q2_1, phi2) with q1, q2 the surface parameters of pinion and gear;
 the pinion rotation phi1 is prescribed. Equations (all in mm):

@@ -1,5 +1,6 @@
 """Fused kernels of tooth contact analysis for many systems at once: the contact system of seed 001 Eq. (16)
-(ERRATA §1.1) on stacked surface data, the Newton step with an LU fast path, and a batched Newton driver that drops
+(docs/theory/tca.md, Eq. (T5)) on stacked surface data, the Newton step with an LU fast path, and a batched Newton
+driver that drops
 hopeless systems early.
 
 Same equations and unknowns as :mod:`spiralbevel._core.tca` (x = (q1, q2, phi2), F in mm); this module only

@@ -82,17 +82,19 @@ def check_boundaries(name, b, pitch_angle):
 
 
 def check_root_outside_base(name, root_angle, delta):
-    """The flank exists only outside the base cone (ERRATA §0.1 'Singular edge'): root_angle > base_cone_angle."""
+    """The flank exists only outside the base cone (docs/theory/logspiral.md#singular-edge): root_angle >
+    base_cone_angle."""
     if not root_angle > delta:
         raise GeometryError.single(
             f"{name}.root_angle", root_angle, f"value > base cone angle = {delta:.10g}", "rad",
             f"root angle {root_angle * DEG:.6f} deg <= base cone angle {delta * DEG:.6f} deg: the root cone lies "
             "inside the base cone, so the log-spiral flank would cross its singular edge psi = 0 (the c-curve, "
-            "ERRATA §0.1); raise the root angle or the pressure angle")
+            "docs/theory/logspiral.md#singular-edge); raise the root angle or the pressure angle")
 
 
 def check_outward_rule(name, psi_range, beta):
-    """Keep |psi - beta| < pi/2 over the domain, the region verified in ERRATA §0.1 (n_out = sign(psi) n there).
+    """Keep |psi - beta| < pi/2 over the domain, the region verified in docs/theory/logspiral.md, Eq. (S9)
+    (#flank-types) (n_out = sign(psi) n there).
 
     Beyond it the profile curvature k1 = cos(psi - beta)/(rho |sin psi|) changes sign (profile inflection).
     """
@@ -100,4 +102,5 @@ def check_outward_rule(name, psi_range, beta):
     if not worst < np.pi / 2:
         raise GeometryError(f"{name}: |psi - beta| reaches {worst * DEG:.4f} deg >= 90 deg on the flank domain, so the "
                             "involute profile has an inflection (k1 = cos(psi - beta)/(rho |sin psi|) changes sign; "
-                            "ERRATA §0.1 verifies |psi - beta| < 90 deg): lower the face angle or the pitch angle")
+                            "docs/theory/logspiral.md, Eq. (S9) (#flank-types) verifies |psi - beta| < 90 deg): "
+                            "lower the face angle or the pitch angle")

@@ -119,7 +119,8 @@ def hypoid_pitch_cone(*, a: float, z1: int, z2: int, shaft_angle: float, de2: fl
     -----
     The standard iterates on η; here 1/ρ_lim(η) − 1/rc0 = 0 (smooth where ρ_lim passes through infinity, which
     for small offsets lies next to the root) is bracketed on a grid of η between 0 and asin(|a|/r_mn1)
-    (beyond it the pinion offset angle ε2 changes sign) and solved by Brent's method to 1e-13 rad. The result is the same root the
+    (beyond it the pinion offset angle ε2 changes sign) and solved by Brent's method to 1e-13 rad. The result is the
+    same root the
     standard's iteration converges to (its stopping rule |rc0/ρ_lim − 1| <= 0.01 % is far looser).
     """
     u = z2 / z1

@@ -136,7 +136,7 @@ class BlankInput:
     @property
     def de2_value(self) -> float:
         """Outer pitch diameter of the wheel, from ``de2`` or ``met·z2``, mm."""
-        return float(self.de2) if self.de2 is not None else float(self.met) * self.z2
+        return float(self.de2) if self.de2 is not None else float(self.met) * self.z2  # type: ignore[arg-type]  # one is set
 
     @property
     def c_ham_value(self) -> float:

@@ -27,7 +27,8 @@ _KIND = {
 class BevelBlank:
     """Blank geometry of a spiral bevel (ISO 23509 Method 0) or hypoid pair (Method 1), face milling.
 
-    Built by :func:`spiralbevel.design.blank.compute_blank`. Subscript 1 = pinion, 2 = wheel. Attributes are grouped as in
+    Built by :func:`spiralbevel.design.blank.compute_blank`. Subscript 1 = pinion, 2 = wheel. Attributes are grouped as
+    in
     ``blank_meta.QUANTITIES``: basic data (``z1, z2, u, Sigma, hand1, hand2, rc0``, factors), pitch cone (``delta1,
     delta2, Re1, Re2, Rm, Rm1, Rm2, Ri1, Ri2, b1, b2, be*, bi*, de*, dm*, di*, met, mmt, mmn``), hypoid offset
     (``eta, zeta_m, zeta_mp, ap, zeta_R, zeta_o, c_be2, rho_lim``), spiral and

@@ -89,7 +89,7 @@ def dedendum_angle_sum_duplex(met: float, re: float, rm: float, beta_m: float, t
     -------
     float, rad
         ΣθfC = (π·met / (2·Re·tan αn·cos βm))·(1 − Rm·sin βm / rc0); in degrees the standard writes the factor
-        90 instead of π/2 (ISO 23509 duplex taper; reference/iso23509-sample1.md gives 8.6277° for Sample 1).
+        90 instead of π/2 (ISO 23509 duplex taper; ISO 23509:2016 Annex F, Sample 1 gives 8.6277°).
     """
     return (0.5 * math.pi * met / (re * tan_alpha * math.cos(beta_m))) * (1.0 - rm * math.sin(beta_m) / rc0)
 
@@ -167,9 +167,11 @@ def taper_angles(
         tf1, tf2 = c_ham * s_mod, (1.0 - c_ham) * s_mod
     elif taper == "given":
         g = given or {}
-        tf1 = g.get("theta_f1") if g.get("theta_f1") is not None else g.get("theta_a2")
-        tf2 = g.get("theta_f2") if g.get("theta_f2") is not None else g.get("theta_a1")
-        tf1, tf2 = float(tf1), float(tf2)
+        f1 = g.get("theta_f1") if g.get("theta_f1") is not None else g.get("theta_a2")
+        f2 = g.get("theta_f2") if g.get("theta_f2") is not None else g.get("theta_a1")
+        if f1 is None or f2 is None:
+            raise ValueError('taper "given" needs theta_f1 or theta_a2, and theta_f2 or theta_a1')
+        tf1, tf2 = float(f1), float(f2)
     else:  # pragma: no cover - BlankInput validates the name
         raise ValueError(taper)
     return TaperAngles(theta_a1=tf2, theta_a2=tf1, theta_f1=tf1, theta_f2=tf2, sum_theta_fS=s_std, sum_theta_fC=s_dup,

@@ -1,18 +1,21 @@
-"""Design of an exactly conjugate pair of logarithmic-spiral bevel gears (seed 000 surface, ERRATA §0.1 and §2.2).
+"""Design of an exactly conjugate pair of logarithmic-spiral bevel gears (seed 000 surface, docs/theory/logspiral.md,
+Eq. (S2) and docs/theory/gearing.md, Eq. (M8)).
 
-Recipe (ERRATA §0.1 'Design recipe', verified): from z1, z2, the shaft angle, the normal pressure angle alpha_n and
+Recipe (docs/theory/logspiral.md, Eq. (S12), verified): from z1, z2, the shaft angle, the normal pressure angle alpha_n
+and
 the mean spiral angle beta_m on the pitch cones,
 
     tan g1 = sin S / (z2/z1 + cos S),  g2 = S - g1
     tan alpha_t = tan alpha_n / cos beta_m
-    sin delta_i = sin g_i cos alpha_t               (so sin delta1 : sin delta2 = z1 : z2, ERRATA §2.2)
+    sin delta_i = sin g_i cos alpha_t               (so sin delta1 : sin delta2 = z1 : z2, docs/theory/gearing.md, Eq.
+    (M8))
     sin beta_plane = cos alpha_n sin beta_m          (spiral parameter of Eq. (16); pinion beta1 = hand * beta_plane,
                                                       gear beta2 = -beta1)
     psi_pitch,i = acos(cos g_i / cos delta_i)
 
 Each flank is a :class:`~spiralbevel.LogSpiralFlank` with rho0 = the member's mean cone distance (so phi = 0 is the
 mean sphere), turned about +z by ``rotation``; its domain is the rectangle in (psi, phi) cut by the toe/heel spheres
-and the root/face cones (ERRATA §0.1 'Domain').
+and the root/face cones (docs/theory/logspiral.md, Eq. (S10)).
 """
 
 from __future__ import annotations
@@ -41,7 +44,7 @@ class BlankBoundaries:
     ----------
     inner_cone_distance, outer_cone_distance : float, mm
         Radii R_i < R_e of the toe and heel spheres about the apex (the blank is taken as bounded by spheres; a real
-        blank with front and back cones gives curved domain sides, ERRATA §0.1 'Domain').
+        blank with front and back cones gives curved domain sides, docs/theory/logspiral.md, Eq. (S10)).
     root_angle, face_angle : float, rad
         Half-angles of the root and face cones. **Approximation:** both are treated as cones coaxial with the member
         and with their apex at the pitch apex O (ISO 23509 root/face apexes are shifted; the lead's adapter decides how
@@ -222,14 +225,15 @@ def _member(member, z, gamma, delta, beta, psi_p, bounds, angular_thickness, cen
     raw, sigma, doms = {}, {}, {}
     for side in Side:
         s = surface.psi_sign(side)
-        doms[side] = ParallelogramDomain(phis[0], phis[1], float(min(s * psi_lo, s * psi_hi)), float(max(s * psi_lo, s * psi_hi)),
+        doms[side] = ParallelogramDomain(phis[0], phis[1], float(min(s * psi_lo, s * psi_hi)),
+                                         float(max(s * psi_lo, s * psi_hi)),
                                          delta)
         chk.check_outward_rule(f"{member.value} {side.value} flank", (doms[side].psi_min, doms[side].psi_max), beta)
         g = surface.evaluate(surface.varphi_of(s * psi_p, 0.0), 0.0)
         raw[side] = _azimuth(g.point)
         e_theta = np.array([-np.sin(raw[side]), np.cos(raw[side]), 0.0])
         sigma[side] = np.sign(g.normal @ e_theta)  # +1: the flank bounds the tooth on its +azimuth edge
-    if sigma[Side.CONVEX] != -sigma[Side.CONCAVE]:  # pragma: no cover - guards the ERRATA §0.1 table
+    if sigma[Side.CONVEX] != -sigma[Side.CONCAVE]:  # pragma: no cover - guards Eq. (S9) (#flank-types)
         raise GeometryError(f"{member.value}: convex and concave flanks face the same way; cannot bound a tooth")
     rotation = {side: float(centre + sigma[side] * angular_thickness / 2 - raw[side]) for side in Side}
     flanks = {side: DesignedFlank(member, side, surface, doms[side], rotation[side]) for side in Side}
@@ -261,7 +265,7 @@ def _check_lands(member, z, surface, flanks, sigma, psi_lo, psi_hi):
 
 
 def pair_recipe(z1, z2, shaft_angle, normal_pressure_angle, spiral_angle):
-    """The verified design recipe of ERRATA §0.1 for a log-spiral pair with line contact.
+    """The verified design recipe of docs/theory/logspiral.md, Eq. (S12) for a log-spiral pair with line contact.
 
     Parameters
     ----------

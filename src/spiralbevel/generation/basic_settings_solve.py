@@ -5,7 +5,8 @@ generated root line lies on the root cone along the whole face width, and two un
 with a finite-difference Jacobian of the *generated* flank (``generate_flank`` + ``ToothFlank.mean_point``, i.e. the
 equation of meshing and ``locate``): the blade angle alpha_h and the machine spiral angle beta' (direction of the cutter
 centre from the mean root point) such that, at the mean pitch point, the normal pressure angle equals the design value
-(alpha_nD or alpha_nC of ISO 23509) and the spiral angle equals beta_m. With a given (fixed) cutter only beta' is solved.
+(alpha_nD or alpha_nC of ISO 23509) and the spiral angle equals beta_m. With a given (fixed) cutter only beta' is
+solved.
 
 Settings of the family (``spiralbevel.machine.basic_settings``; docs/conventions.md, "Basic settings that hit the
 design"):
@@ -79,7 +80,7 @@ def root_deviation(flank) -> tuple:
     # the arc angle 0.02 rad from the tip instead: it lies rho_h (1 - cos 0.02) = 2e-4 rho_h above the tip plane,
     # below 1e-3 mm for any edge radius up to 5 mm
     u = flank.generator.cp["u_min"] + 0.02 * flank.cutter.edge_radius
-    out = []
+    out: list[float | None] = []
     for R in (ol.Ri, ol.Rm, ol.Re):
         try:
             x = flank._locator.at_R_u(np.array([R]), np.array([u]))

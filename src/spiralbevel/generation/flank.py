@@ -1,4 +1,5 @@
-"""Generated tooth flank of a face-milled spiral bevel member (seed 001 §3, seed 003; ERRATA §1.1, §3.1, §3.3).
+"""Generated tooth flank of a face-milled spiral bevel member (seed 001 §3, seed 003; docs/theory/generation.md, Eqs.
+(G5)-(G8) (and (G13)-(G15) for curvatures)).
 
 ``generate_flank(cutter, settings, blank, member, side)`` returns a :class:`ToothFlank`: the envelope of the head
 cutter (straight or arc blade plus edge radius) in the member frame, clipped to the blank.
@@ -47,7 +48,8 @@ class ToothFlank:
         self.member, self.side = Member(member), Side(side)
         if cutter.side is not self.side:
             raise DesignError.single("cutter.blade", cutter.blade.value,
-                                     f"{'inner' if self.side is Side.CONVEX else 'outer'} for the {self.side.value} side",
+                                     f"{'inner' if self.side is Side.CONVEX else 'outer'} "
+                                     f"for the {self.side.value} side",
                                      "-")
         self.cutter, self.settings = cutter, settings
         self.hand = _hand(getattr(blank, f"hand{self.member.index}"))
@@ -75,7 +77,7 @@ class ToothFlank:
 
         Notes
         -----
-        Solves F1 = |r x k| - R = 0, F2 = r.k - L = 0 (seed 003, corrected in ERRATA §3.1 step 7 / §3.2 items 7-8)
+        Solves F1 = |r x k| - R = 0, F2 = r.k - L = 0 (seed 003, corrected in docs/theory/generation.md, Eq. (G11))
         for (u, psi_c), with theta in closed form; raises ``GeometryError`` if a point is not on the flank.
         """
         x = self._locator.at_axial_radius(axial, radius)
@@ -134,9 +136,11 @@ class ToothFlank:
     def mean_point(self, depth: float = 0.0) -> MeanPoint:
         """Reference point at the mean cone distance, ``depth`` mm below the pitch line (0: the mean pitch point).
 
-        Seed 003 with ERRATA §3.1 step 7: radius R_m sin(delta) - h cos(delta), axial R_m cos(delta) + h sin(delta).
+        Seed 003 with docs/theory/generation.md, Eqs. (G10)-(G11) (#mean-point): radius R_m sin(delta) - h cos(delta),
+        axial R_m cos(delta) + h sin(delta).
         The spiral angle is measured on the cone of pitch angle through the point, the normal pressure angle is
-        asin|n . N| with N the unit normal of that cone (ERRATA §0.3); ``pressure_angle_root`` uses a cone of root
+        asin|n . N| with N the unit normal of that cone (docs/theory/logspiral.md, Eqs. (S10)-(S11) (#cones));
+        ``pressure_angle_root`` uses a cone of root
         angle through the point instead (the plane of the generating crown gear). Computed once per depth (the
         flank is immutable); every analysis (reports, phasing, synthesis, tooth assembly) asks for it.
         """

@@ -1,4 +1,5 @@
-"""Batched location of generated flank points by Newton's method (seed 003 with ERRATA §3.1 step 7).
+"""Batched location of generated flank points by Newton's method (seed 003 with docs/theory/generation.md, Eqs.
+(G10)-(G11) (#mean-point)).
 
 A point is located by two conditions on the generated surface (u, psi_c) -> r_i, with the cutter angle theta in
 closed form at every iterate. For a target (axial, radius) in the member frame the conditions are the corrected
@@ -42,8 +43,8 @@ class BlankOutline:
         i = Member(member).index
         try:
             g = lambda name: float(getattr(blank, f"{name}{i}"))  # noqa: E731
-            Re = float(getattr(blank, f"Re{i}", getattr(blank, "Re2")))
-            Ri = float(getattr(blank, f"Ri{i}", getattr(blank, "Ri2")))
+            Re = float(getattr(blank, f"Re{i}", blank.Re2))
+            Ri = float(getattr(blank, f"Ri{i}", blank.Ri2))
             out = cls(delta=g("delta"), delta_a=g("delta_a"), delta_f=g("delta_f"), Rm=float(blank.Rm), Ri=Ri,
                       Re=Re, ham=g("ham"), hfm=g("hfm"))
         except AttributeError as err:

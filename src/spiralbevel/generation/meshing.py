@@ -1,6 +1,7 @@
 """Equation of meshing of generation and the generated surface as a function of (u, psi_c).
 
-seed 001 Eqs. (11)-(15) with ERRATA §1.1; seed 003 with ERRATA §3.1. The cutter angle theta is found in closed form
+seed 001 Eqs. (11)-(15) (docs/theory/generation.md, Eqs. (G5)-(G8)); seed 003 (docs/theory/generation.md, Eqs.
+(G9)-(G11)). The cutter angle theta is found in closed form
 for every (u, psi_c) (see ``_core.generation.solve_contact``), so the generated surface is the explicit map
 (u, psi_c) -> r_i. Hand: the kernel is written for a left-hand member; a right-hand member is its mirror image
 y -> -y in the member frame (and the machine is mirrored, docs/conventions.md "Machine settings").
@@ -54,7 +55,8 @@ class Generator:
         return self._mirror(_g.to_member(r, sol["psi"], self.mp))
 
     def evaluate(self, u, psi, curvature=True) -> FlankPoints:
-        """Points, outward normals and (optionally) principal curvatures by the transfer formula (ERRATA §3.3)."""
+        """Points, outward normals and (optionally) principal curvatures by the transfer formula
+        (docs/theory/generation.md, Eqs. (G13)-(G15), #curvature-transfer)."""
         sol = self.contact(u, psi)
         if np.any(np.abs(sol["disc"]) > 1.0):
             raise GeometryError.single("settings", "-", "settings for which the cutter generates the flank", "-",

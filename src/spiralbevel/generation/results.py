@@ -62,7 +62,7 @@ class FlankPoints:
 
 @dataclass(frozen=True)
 class MeanPoint:
-    """Mean (reference) point of a flank, seed 003 with ERRATA §3.1 step 7.
+    """Mean (reference) point of a flank, seed 003 with docs/theory/generation.md, Eqs. (G10)-(G11) (#mean-point).
 
     Attributes
     ----------
@@ -71,7 +71,8 @@ class MeanPoint:
     spiral_angle : float, rad
         Angle between the tooth trace on the cone of pitch angle through the point and that cone's generatrix (>= 0).
     pressure_angle : float, rad
-        Normal pressure angle w.r.t. the pitch cone: asin|n . N_pitch| (ERRATA §0.3).
+        Normal pressure angle w.r.t. the pitch cone: asin|n . N_pitch| (docs/theory/logspiral.md, Eqs. (S10)-(S11)
+        (#cones)).
     pressure_angle_root : float, rad
         Same, measured against a cone of root angle through the point (the cradle plane of generation).
     hand_sign : int

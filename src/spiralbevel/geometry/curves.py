@@ -1,7 +1,8 @@
 """Curves of log-spiral bevel gearing: spherical involutes, the c-curve, conical log spirals and pitch-cone curves.
 
 Frame: member frame of docs/conventions.md (axis +z, apex at the origin). Sources: seed 000 Eqs. (1)-(6), (17) and
-seed 002 Eqs. (25)-(35), as corrected in ERRATA §0.2 items 1-3, 9, 18 and §2.1 items 14-16.
+seed 002 Eqs. (25)-(35), as corrected in docs/theory/logspiral.md#printed-equations and
+docs/theory/gearing.md#li-surface.
 """
 
 from __future__ import annotations
@@ -16,7 +17,8 @@ __all__ = [
 
 
 def base_cone_frame(varphi, delta):
-    """Unit vectors t (generatrix), w, m (normal of the rolling plane), each (..., 3); ERRATA §0.1.
+    """Unit vectors t (generatrix), w, m (normal of the rolling plane), each (..., 3); docs/theory/logspiral.md, Eq.
+    (S1)
 
     t = (sin d cos varphi, sin d sin varphi, cos d), w = (sin varphi, -cos varphi, 0),
     m = (cos d cos varphi, cos d sin varphi, -sin d); t x w = m.
@@ -32,12 +34,14 @@ def base_cone_frame(varphi, delta):
 
 
 def spherical_involute(varphi, rho0, delta):
-    """Spherical involute of the base cone, seed 000 Eq. (5) (ERRATA §0.2 item 2), (..., 3) mm.
+    """Spherical involute of the base cone, seed 000 Eq. (5) (docs/theory/logspiral.md#printed-equations, item 2), (...,
+    3) mm.
 
     Parameters
     ----------
     varphi : array_like float, rad
-        Rolling angle; the involute starts at Q = rho0 t(0) (ERRATA §0.2 item 1) for varphi = 0.
+        Rolling angle; the involute starts at Q = rho0 t(0) (docs/theory/logspiral.md#printed-equations, item 1) for
+        varphi = 0.
     rho0 : float, mm
         Sphere radius (apex distance of Q).
     delta : float, rad
@@ -56,7 +60,8 @@ def spherical_involute(varphi, rho0, delta):
 
 
 def spherical_involute_matrix_form(varphi, rho0, delta):
-    """Seed 000 Eq. (6) as corrected in ERRATA §0.2 item 3: F(varphi) diag(cos psi, sin psi, cos psi) V, (..., 3) mm.
+    """Seed 000 Eq. (6) as corrected in docs/theory/logspiral.md#printed-equations, item 3: F(varphi) diag(cos psi, sin
+    psi, cos psi) V, (..., 3) mm.
 
     F(a) = [[cos a, sin a, 0], [sin a, -cos a, 0], [0, 0, 1]] (a reflection-rotation, det = -1) and
     V = (rho0 sin d, rho0, rho0 cos d). Numerically identical to :func:`spherical_involute`.
@@ -73,7 +78,8 @@ def spherical_involute_matrix_form(varphi, rho0, delta):
 def c_curve(phi, rho0, delta, beta):
     """The c-curve (cuspidal edge) on the base cone, seed 000 Eq. (17): c(phi) = rho(phi) t(phi), (..., 3) mm.
 
-    It is a conical log spiral on the base cone whose angle to the generatrix is exactly beta (ERRATA §0.2 item 9).
+    It is a conical log spiral on the base cone whose angle to the generatrix is exactly beta
+    (docs/theory/logspiral.md#surface (base-cone curve)).
     """
     phi = np.asarray(phi, float)
     rho = rho0 * np.exp(phi * np.sin(delta) / np.tan(beta))
@@ -87,14 +93,15 @@ def cone_angle_of_psi(psi, delta):
 
 
 def psi_of_cone_angle(gamma, delta):
-    """|psi| = acos(cos gamma / cos delta) of the flank trace on cone gamma >= delta, rad (ERRATA §0.3)."""
+    """|psi| = acos(cos gamma / cos delta) of the flank trace on cone gamma >= delta, rad (docs/theory/logspiral.md,
+    Eqs. (S10)-(S11) (#cones))."""
     return np.arccos(np.clip(np.cos(np.asarray(gamma, float)) / np.cos(delta), -1.0, 1.0))
 
 
 def cone_spiral_angle(beta, delta, gamma):
     """Spiral angle of the flank trace on cone gamma: tan beta_gamma = tan beta sin gamma / sin delta, rad.
 
-    ERRATA §0.2 item 18; equals beta on the base cone (gamma = delta), signed like beta.
+    docs/theory/logspiral.md, Eq. (S11); equals beta on the base cone (gamma = delta), signed like beta.
     """
     return np.arctan(np.tan(beta) * np.sin(np.asarray(gamma, float)) / np.sin(delta))
 
@@ -103,7 +110,7 @@ def conical_log_spiral(phi, psi, rho0, delta, beta):
     """The psi = const curve of the flank (tooth trace on cone gamma(psi)), (..., 3) mm.
 
     r(phi + psi/sin(delta), phi) of seed 000 Eq. (16); a conical log spiral with spiral angle
-    :func:`cone_spiral_angle` (ERRATA §0.2 item 18).
+    :func:`cone_spiral_angle` (docs/theory/logspiral.md, Eq. (S11)).
     """
     phi = np.asarray(phi, float)
     psi = np.asarray(psi, float)
@@ -114,7 +121,8 @@ def conical_log_spiral(phi, psi, rho0, delta, beta):
 
 
 def taper_curve(phi, r0, cone_angle, spiral_angle):
-    """Logarithmic-spiral taper curve on a cone, seed 002 Eq. (33) corrected (ERRATA §2.1 items 14-15), (..., 3) mm.
+    """Logarithmic-spiral taper curve on a cone, seed 002 Eq. (33) corrected (docs/theory/gearing.md#li-surface (cone
+    spiral)), (..., 3) mm.
 
     Parameters
     ----------
@@ -158,7 +166,8 @@ def mating_taper_curve(phi, r0, pitch_angle1, shaft_angle, spiral_angle):
 
     Notes
     -----
-    ERRATA §2.1 item 16: same spiral angle, opposite hand (spiral parameter -beta), on pitch cone 2, phased so that its
+    docs/theory/gearing.md#li-surface (mating pitch curve) and Eq. (M9): same spiral angle, opposite hand (spiral
+    parameter -beta), on pitch cone 2, phased so that its
     phi = 0 point is curve 1's phi = 0 point on the common pitch generatrix:
     point = R_z(pi) taper_curve(phi, R0 sin g2, g2, -beta). In the pair frame the gear member frame is R_y(shaft)
     (times the gear roll); rolling the pitch cones by phi1 and phi2 = -(sin g1/sin g2) phi1 keeps the two curves in

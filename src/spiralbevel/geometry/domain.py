@@ -2,7 +2,7 @@
 
 The log-spiral flank of seed 000 lives on a parallelogram in the (varphi, phi) plane, which is a rectangle in the
 (psi, phi) coordinates: phi in [phi_min, phi_max] (toe and heel spheres) and psi in [psi_min, psi_max] (root and face
-cones, ERRATA §0.1). psi is signed: psi > 0 on the branch with varphi > phi.
+cones, docs/theory/logspiral.md, Eq. (S10)). psi is signed: psi > 0 on the branch with varphi > phi.
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
 """The logarithmic-spiral bevel tooth flank of seed 000 as a user-facing object.
 
-The surface is seed 000 Eq. (16) as corrected in ERRATA §0.1: a planar log spiral (pole at the apex O, angle
+The surface is seed 000 Eq. (16) as corrected in docs/theory/logspiral.md, Eq. (S2): a planar log spiral (pole at the
+apex O, angle
 ``spiral_angle`` between tangent and radius) lying in a plane that rolls on the base cone of half-angle
 ``base_cone_angle``. Frame: member frame of docs/conventions.md (axis +z, apex at the origin, body toward +z).
 """
@@ -29,13 +30,15 @@ class FlankGeometry:
         Surface points.
     normal : (..., 3) float
         Outward unit normals (out of the tooth material into the tooth space), n_out = sign(psi) n with n the
-        corrected seed 000 Eq. (21) (ERRATA §0.1). n_out . r/|r| = sign(psi) sin(beta), i.e. +sin|beta| on the
+        corrected seed 000 Eq. (21) (docs/theory/logspiral.md, Eq. (S4)). n_out . r/|r| = sign(psi) sin(beta), i.e.
+        +sin|beta| on the
         convex flank and -sin|beta| on the concave flank.
     E, F, G : (...) float, mm^2
         First fundamental form in (varphi, phi): E = |r_varphi|^2, F = r_varphi . r_phi (= 0), G = |r_phi|^2.
     L, M, N : (...) float, mm
         Second fundamental form **w.r.t. the outward normal with the convex-positive sign**:
-        L = -r_varphivarphi . n_out = r_varphi . d(n_out)/dvarphi, etc. Hence L = -sign(psi) L_ERRATA (the papers'
+        L = -r_varphivarphi . n_out = r_varphi . d(n_out)/dvarphi, etc. Hence L = -sign(psi) L_L of
+        docs/theory/logspiral.md Eq. (S7) (the papers'
         L = r_uu . n) and the eigenvalues of I^-1 II are ``k1, k2``. M = 0.
     k1, k2 : (...) float, 1/mm
         Principal curvatures, convex = positive (docs/conventions.md): ``k1`` along the spherical involute (the
@@ -100,7 +103,7 @@ def _check_float(field, value, lo, hi, unit, allowed):
 
 @dataclass(frozen=True)
 class LogSpiralFlank:
-    """Logarithmic-spiral bevel tooth surface, seed 000 Eq. (16) corrected in ERRATA §0.1.
+    """Logarithmic-spiral bevel tooth surface, seed 000 Eq. (16) corrected in docs/theory/logspiral.md, Eq. (S2)
 
     Parameters
     ----------
@@ -111,14 +114,16 @@ class LogSpiralFlank:
         Base-cone half-angle delta, 0 < delta < pi/2.
     spiral_angle : float, rad
         Spiral parameter beta of the planar log spiral in the rolling plane, 0 < |beta| < pi/2. beta > 0 is a right-hand
-        flank, beta < 0 the left-hand (mirror) flank. This is *not* the pitch-cone spiral angle (ERRATA §0.1, "design
+        flank, beta < 0 the left-hand (mirror) flank. This is *not* the pitch-cone spiral angle
+        (docs/theory/logspiral.md, Eq. (S12), "design
         recipe"): on a coaxial cone gamma the trace angle is tan(beta_gamma) = tan(beta) sin(gamma)/sin(delta).
 
     Notes
     -----
     r(varphi, phi) = rho (cos psi t(varphi) + sin psi w(varphi)), psi = (varphi - phi) sin(delta), with
     t = (sin d cos varphi, sin d sin varphi, cos d), w = (sin varphi, -cos varphi, 0). The branch sign(psi) = sign(beta)
-    is the convex flank, the other one the concave flank (ERRATA §0.1 table). psi = 0 is a cuspidal edge (the c-curve,
+    is the convex flank, the other one the concave flank (docs/theory/logspiral.md, Eq. (S9) (#flank-types)). psi = 0 is
+    a cuspidal edge (the c-curve,
     seed 000 Eq. (17)) where the surface is singular; :meth:`evaluate` raises :class:`GeometryError` there.
     """
 
@@ -224,11 +229,13 @@ class LogSpiralFlank:
         if psi is not None and not np.isfinite(psi[~ok]).all():
             return "LogSpiralFlank.evaluate: varphi and phi must be finite numbers (got NaN or inf)"
         return ("LogSpiralFlank.evaluate: psi = (varphi - phi) sin(delta) = 0 lies on the singular (cuspidal) edge of "
-                "the log-spiral flank, the c-curve on the base cone (seed 000 Eq. (17), ERRATA §0.1 'Singular edge'); "
+                "the log-spiral flank, the c-curve on the base cone "
+                "(seed 000 Eq. (17), docs/theory/logspiral.md#singular-edge); "
                 "a flank domain must keep psi != 0 (varphi != phi)")
 
     def c_curve(self, phi):
-        """The cuspidal edge c(phi) = r(phi, phi) = rho(phi) t(phi) on the base cone, (..., 3) mm (seed 000 Eq. (17))."""
+        """The cuspidal edge c(phi) = r(phi, phi) = rho(phi) t(phi) on the base cone, (..., 3) mm (seed 000 Eq.
+        (17))."""
         return self.point(phi, phi)
 
     def mirrored(self) -> "LogSpiralFlank":

@@ -123,7 +123,8 @@ class _Bridger:
     """
 
     def __init__(self, builder: MeshBuilder, h: float):
-        self.builder, self.h, self._cache = builder, h, {}
+        self.builder, self.h = builder, h
+        self._cache: dict = {}
 
     def rung(self, u: int, v: int, pu, pv) -> np.ndarray:
         key = (u, v) if u < v else (v, u)

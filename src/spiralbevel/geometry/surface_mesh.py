@@ -253,7 +253,8 @@ class MeshBuilder:
     """Assembles a mesh patch by patch, orienting each new patch against the edges already present.
 
     A patch that shares edges with earlier patches is flipped when it traverses them in the same direction; a patch
-    whose shared edges disagree among themselves raises :class:`OrientationError` (the surface is not orientable as built, which
+    whose shared edges disagree among themselves raises :class:`OrientationError` (the surface is not orientable as
+    built, which
     for tooth solids means the given normals were not all outward).
     """
 

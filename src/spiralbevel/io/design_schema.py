@@ -216,7 +216,8 @@ class LTCASpec(_Model):
 
     side: Literal["drive", "coast"] = _f("drive", description="pair side analysed")
     torque: Union[Literal["approach"], float] = _f(
-        "approach", unit="N m", description="'approach' (the torque of a 0.00635 mm approach) or a gear torque 0 < T < 1e7")
+        "approach", unit="N m", description="'approach' (the torque of a 0.00635 mm approach) "
+                                          "or a gear torque 0 < T < 1e7")
     positions: int = _f(21, ge=5, le=201, description="mesh positions over one cycle")
     youngs_modulus: float = _f(206000.0, unit="N/mm^2", gt=1000.0, le=1e6, description="E of both members")
     poisson_ratio: float = _f(0.3, unit="-", gt=0.0, lt=0.5, description="nu of both members")

@@ -308,7 +308,7 @@ def write_step(path: "str | os.PathLike[str]", convex, concave, *, z: int | None
             for s in sa + sb:
                 face = _face(occ, s)
                 if k:
-                    face = face.Moved(occ["TopLoc"].TopLoc_Location(_rotation(occ, k, int(z))))
+                    face = face.Moved(occ["TopLoc"].TopLoc_Location(_rotation(occ, k, int(z))))  # type: ignore[arg-type]  # k > 0: z set
                 builder.Add(compound, face)
                 n_faces += 1
     else:

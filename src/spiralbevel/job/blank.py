@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from ..conventions import Hand
 from ..errors import DesignError, Problem
@@ -41,7 +42,7 @@ def blank_input_from_design(spec: DesignFile):
 
     g, d = spec.gear_set, spec.gear_set.depth
     r = math.radians
-    kw = dict(
+    kw: dict[str, Any] = dict(
         z1=g.pinion_teeth, z2=g.gear_teeth, b=g.face_width, beta_m=r(g.mean_spiral_angle), rc0=g.cutter_radius,
         hand1=Hand(g.pinion_hand), shaft_angle=r(g.shaft_angle), de2=g.outer_pitch_diameter, met=g.module,
         alpha_dD=r(g.normal_pressure_angle),
@@ -55,7 +56,9 @@ def blank_input_from_design(spec: DesignFile):
         if d.dedendum_angles is not None:
             kw.update(theta_f1=r(d.dedendum_angles[0]), theta_f2=r(d.dedendum_angles[1]))
         else:
-            kw.update(theta_a2=r(d.gear_addendum_dedendum_angles[0]), theta_f2=r(d.gear_addendum_dedendum_angles[1]))
+            ga = d.gear_addendum_dedendum_angles
+            assert ga is not None  # the schema requires one of the two pairs for taper "given"
+            kw.update(theta_a2=r(ga[0]), theta_f2=r(ga[1]))
     try:
         return BlankInput(**kw)
     except DesignError as err:

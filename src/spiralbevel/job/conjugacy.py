@@ -7,6 +7,7 @@ lies on the gear flank to round-off; a design error (for example an inconsistent
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -46,7 +47,7 @@ def conjugacy_report(pair, n_face: int = 9, n_profile: int = 5) -> dict:
     """
     kin = BevelPairKinematics(pair.shaft_angle, pair.pinion.teeth, pair.gear.teeth)
     pitch = 2.0 * math.pi / pair.gear.teeth
-    out = {}
+    out: dict[str, dict[str, Any]] = {}
     for side in (Side.CONVEX, Side.CONCAVE):
         pf, gf = pair.flank(Member.PINION, side), pair.flank(Member.GEAR, side.mate)
         d = pf.domain

@@ -132,7 +132,6 @@ def effective_synthesis(spec, blank):
 
     Returns ``None`` when nothing is synthesized (a pinion side with given machine settings keeps them).
     """
-    from ..io.design_schema import SynthesisSpec
 
     if spec.synthesis is not None:
         return spec.synthesis
@@ -343,7 +342,8 @@ def _in_design_file(err, key, fs):
     def path(field):
         head, _, rest = field.partition(".")
         if head == "settings":
-            return f"face_milling.{key}.machine.{rest}" + ("" if fs.machine is not None else " (derived from the blank)")
+            return f"face_milling.{key}.machine.{rest}" + (
+                "" if fs.machine is not None else " (derived from the blank)")
         if head == "cutter":
             return f"face_milling.{key}.cutter.{rest}" + ("" if fs.cutter is not None else " (derived cutter)")
         if field in ("point_radius", "blade_angle", "point_width", "edge_radius", "profile_radius"):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ..conventions import Member
@@ -15,7 +17,8 @@ def easeoff_maps(blank, setups, out, plots: bool):
     from ..meshing.easeoff import easeoff
 
     kin = BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
-    section, files = {"units": "mm; positive = clearance (material removed from the pinion)"}, []
+    section: dict[str, Any] = {"units": "mm; positive = clearance (material removed from the pinion)"}
+    files: list = []
     for name, (s1, s2) in SIDES.items():
         try:
             eo = easeoff(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, kin)

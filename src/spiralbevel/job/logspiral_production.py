@@ -191,7 +191,8 @@ def mismatch_section(spec, pair, crowning, reliefs, out, summary, plots):
                  "unit": "deg" if r.name == "shaft_angle" else "mm",
                  "line_contact_te_growth_arcsec": r.line_growth / ARCSEC,
                  "mismatched_te_growth_arcsec": r.mismatched_growth / ARCSEC,
-                 "line_contact_te_ptp_arcsec": r.line_ptp / ARCSEC, "mismatched_te_ptp_arcsec": r.mismatched_ptp / ARCSEC}
+                 "line_contact_te_ptp_arcsec": r.line_ptp / ARCSEC,
+                 "mismatched_te_ptp_arcsec": r.mismatched_ptp / ARCSEC}
         try:  # surface TCA of the mismatched pair under the same misalignment (cross-check of the first-touch TE)
             rm = solve_tca(c1, c2, kin, phi1_mean=phi1m, n_positions=21, start=start, misalignment=mis[r.name])
             entry["mismatched_tca_te_ptp_arcsec"] = rm.peak_to_peak / ARCSEC

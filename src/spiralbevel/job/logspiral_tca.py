@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -25,7 +26,8 @@ def contact_surface(pair, member, side) -> LogSpiralSurface:
 def logspiral_tca(pair, n_positions: int = 21):
     """TCA of both sides of the pair. Returns ({name: TCAResult or None}, report section)."""
     kin = BevelPairKinematics(pair.shaft_angle, pair.pinion.teeth, pair.gear.teeth)
-    results, section = {}, {}
+    results: dict[str, Any] = {}
+    section: dict[str, dict[str, Any]] = {}
     for name, (s1, s2) in {"convex-concave": (Side.CONVEX, Side.CONCAVE),
                            "concave-convex": (Side.CONCAVE, Side.CONVEX)}.items():
         c1, c2 = contact_surface(pair, Member.PINION, s1), contact_surface(pair, Member.GEAR, s2)

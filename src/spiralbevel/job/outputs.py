@@ -41,7 +41,8 @@ def curvature_domain_maps(pair, grids, out: Path) -> str:
     """PNG of k1 and k2 of every log-spiral flank over its parameter domain (the parallelogram in (varphi, phi))."""
     from ..viz.flank_maps import plot_domain_fields
 
-    k1, k2 = [], []
+    k1: list[tuple] = []
+    k2: list[tuple] = []
     for (m, s), g in grids.items():
         sf = pair.flank(m, s).surface
         phi = sf.phi_of_rho(np.asarray(g.rho))
@@ -82,7 +83,8 @@ def meshing_pair_3d(pair, grids, out: Path) -> str:
     surfaces = [(lab if lab else "_", p, c) for lab, p, c in surfaces]
     # look down the pitch line from beyond the heel: the tooth's cross-section between the two gear teeth
     elev = 90.0 - math.degrees(pair.pinion.pitch_angle)
-    return save_figure(plot_surfaces_3d(surfaces, title="Meshing tooth pair (pair frame, zero roll), seen from the heel",
+    return save_figure(plot_surfaces_3d(surfaces, title="Meshing tooth pair (pair frame, zero roll), "
+                                                  "seen from the heel",
                                         elev=elev, azim=0.0), out / "meshing_pair_3d.png")
 
 
@@ -172,7 +174,8 @@ def stl_files(tooth_grids_by_member, teeth, out: Path, cad=None) -> list[str]:
     names = []
     for member, c in _cad(tooth_grids_by_member, cad).items():
         write_stl(out / f"{member.value}_tooth.stl", tooth_mesh(*c["tooth"]), name=f"{member.value} tooth")
-        write_stl(out / f"{member.value}.stl", gear_mesh(*c["gear"], teeth[member]), name=member.value)
+        gear = gear_mesh(*c["gear"], teeth[member])  # type: ignore[call-arg]  # c["gear"] = (convex, concave)
+        write_stl(out / f"{member.value}.stl", gear, name=member.value)
         names += [f"{member.value}_tooth.stl", f"{member.value}.stl"]
     return names
 

@@ -19,7 +19,8 @@ class Steps:
         if self.enabled:
             from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
-            self._progress = Progress(TextColumn("{task.description:<38}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
+            self._progress = Progress(TextColumn("{task.description:<38}"), BarColumn(),
+                                      TextColumn("{task.completed}/{task.total}"),
                                       TimeElapsedColumn(), transient=False)
             self._progress.__enter__()
             self._task = self._progress.add_task("starting", total=self.total)

@@ -51,12 +51,14 @@ def rating_input_from_design(spec: DesignFile, blank):
     r = spec.rating
     if r is None:
         raise DesignError.single("rating", "<missing>", "a [rating] section", "", "the design has no [rating] section")
-    T1 = r.pinion_torque if r.pinion_torque is not None else 30000.0 * r.power / (math.pi * r.pinion_speed)
+    T1 = r.pinion_torque if r.pinion_torque is not None else 30000.0 * r.power / (math.pi * r.pinion_speed)  # type: ignore[operator]  # schema: one is set
     if r.pitch_deviation is not None:
         f_pt = tuple(r.pitch_deviation)
     else:
-        f_pt = (pitch_deviation_from_grade(r.accuracy_grade, blank.dm1, blank.mmn),
-                pitch_deviation_from_grade(r.accuracy_grade, blank.dm2, blank.mmn))
+        grade = r.accuracy_grade
+        assert grade is not None  # the schema requires exactly one of pitch_deviation and accuracy_grade
+        f_pt = (pitch_deviation_from_grade(grade, blank.dm1, blank.mmn),
+                pitch_deviation_from_grade(grade, blank.dm2, blank.mmn))
     rho = tuple(r.cutter_edge_radius) if r.cutter_edge_radius is not None else (
         _edge_radius(spec, blank, Member.PINION), _edge_radius(spec, blank, Member.GEAR))
     try:
@@ -99,6 +101,7 @@ def rating_ltca_report(spec: DesignFile, blank, report: dict, summary, ltca_resu
     flank ``setups`` also ``rating.fe_root_stress`` (:func:`rating_fe_root_report`)."""
     if spec.rating is None or ltca_result is None or "rating" not in report:
         return
+    assert spec.ltca is not None  # the LTCA ran, so the design has an [ltca] section
     if spec.ltca.side != "drive":
         report["rating"]["ltca_comparison"] = {"status": "not compared: the rating is of the drive side, the LTCA "
                                                          "of the coast side"}
@@ -175,6 +178,7 @@ def fe_root_stress_from_job(spec: DesignFile, blank, setups, ltca_result, fe_opt
     from .tca import SIDES
 
     lt = spec.ltca
+    assert lt is not None  # called after the LTCA of the job, which needs [ltca]
     s1, s2 = SIDES[lt.side]
     c1, c2 = phased_for_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank)
     nf, npf = lt.flank_grid

@@ -1,4 +1,5 @@
-"""Orchestration of ``spiralbevel run``: design file → blank → flanks → analyses → files, written whole or not at all."""
+"""Orchestration of ``spiralbevel run``: design file → blank → flanks → analyses → files, written whole or not at
+all."""
 
 from __future__ import annotations
 

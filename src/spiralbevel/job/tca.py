@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from typing import Any
 
 import numpy as np
 
@@ -23,7 +24,9 @@ SIDES = {"drive": (Side.CONCAVE, Side.CONVEX), "coast": (Side.CONVEX, Side.CONCA
 def run_pair_tca(blank, setups, grids, n_positions: int = 41):
     """TCA of both sides. Returns ({side: TCAResult or None}, report section, {side: (outline1, outline2)})."""
     kin = BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
-    results, section, outlines = {}, {}, {}
+    results: dict[str, Any] = {}
+    section: dict[str, dict[str, Any]] = {}
+    outlines: dict[str, Any] = {}
     for name, (s1, s2) in SIDES.items():
         p, g = setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank
         c1, c2 = phased_for_pair(p, g)

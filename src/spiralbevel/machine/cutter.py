@@ -1,6 +1,7 @@
 """Face-milling head cutter: straight (or circular-arc) blade with a circular edge radius (seed 001 Eqs. (7)-(10)).
 
-ERRATA §1.1 gives the decoded equations. Frame S_h: cutter axis z_h, blade tips in the plane z_h = 0, cutter body
+docs/theory/generation.md, Eqs. (G1)-(G3) gives the decoded equations. Frame S_h: cutter axis z_h, blade tips in the
+plane z_h = 0, cutter body
 toward -z_h. s = +1 for the OUTER blade, which cuts the CONCAVE flank; s = -1 for the INNER blade, which cuts the
 CONVEX flank.
 """
@@ -28,7 +29,7 @@ class Blade(str, Enum):
 
     @property
     def sign(self) -> int:
-        """s of seed 001 Eqs. (7)-(10): +1 outer, -1 inner (ERRATA §1.1)."""
+        """s of seed 001 Eqs. (7)-(10): +1 outer, -1 inner (docs/theory/generation.md, Eqs. (G1)-(G3))."""
         return 1 if self is Blade.OUTER else -1
 
     @property

@@ -28,7 +28,8 @@ def is_drive(member, side) -> bool:
 
 
 def design_pressure_angle(blank, member, side) -> float:
-    """Design normal pressure angle (rad) of a flank at the mean point: ISO 23509 alpha_nD on the drive side, alpha_nC on
+    """Design normal pressure angle (rad) of a flank at the mean point: ISO 23509 alpha_nD on the drive side, alpha_nC
+    on
     the coast side (both include f_alpha_lim * alpha_lim)."""
     return float(blank.alpha_nD if is_drive(member, side) else blank.alpha_nC)
 

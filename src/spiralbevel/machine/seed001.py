@@ -1,4 +1,5 @@
-"""Seed 001 (Liu, Chen, Li, Machines 2024, 12, 34) blank and machine settings, as decoded in ERRATA §1.2.
+"""Seed 001 (Liu, Chen, Li, Machines 2024, 12, 34) blank and machine settings, as decoded in docs/theory/example.md
+(Tables 1, 4, 5)
 
 Table 1 (blank), Table 4 (gear, inner blade -> gear convex side) and Table 5 (pinion, outer blade -> pinion concave
 side). Pitch angles are the exact atan(23/65) (the table's 19 deg 29' / 70 deg 31' are these values rounded); mean
@@ -42,7 +43,8 @@ def seed001_blank() -> SimpleNamespace:
 
 
 def seed001_settings() -> dict:
-    """Seed 001 Tables 4 and 5: ``{(Member, Side): (HeadCutter, MachineSettings)}`` (ERRATA §1.2)."""
+    """Seed 001 Tables 4 and 5: ``{(Member, Side): (HeadCutter, MachineSettings)}`` (docs/theory/example.md#table-4 and
+    #table-5)."""
     blank = seed001_blank()
     gear_cutter = HeadCutter(point_radius=113.155, blade_angle=_dms(23, 50), point_width=2.29, edge_radius=1.31,
                              blade=Blade.INNER)

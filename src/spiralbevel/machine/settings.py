@@ -1,4 +1,5 @@
-"""Basic machine settings of a cradle-type generator (seed 001 §3.1, Eq. (15); ERRATA §1.1, §1.2 Tables 4-5, §3.1).
+"""Basic machine settings of a cradle-type generator (seed 001 §3.1, Eq. (15); docs/theory/generation.md#cradle-machine
+and docs/theory/example.md#table-4 Tables 4-5, §3.1).
 
 The positive direction of every setting is defined in ``docs/conventions.md`` section "Machine settings".
 """
@@ -42,10 +43,11 @@ class MachineSettings:
         out of the cut.
     sliding_base : float, mm
         X_B; a positive value moves the work along -Z_m, toward the cutter, i.e. deeper into the cut
-        (ERRATA §1.1: the work axis passes through A = (0, E_m, -X_B)).
+        (docs/theory/generation.md, Eqs. (G5)-(G6): the work axis passes through A = (0, E_m, -X_B)).
     blank_offset : float, mm
         E_m at psi_c = 0; a positive value moves the work axis away from the side of the root line on which the
-        cutter centre lies (along +Y_m on the right-hand machine, where A_i = (0, E_m, -X_B) as in ERRATA §1.1).
+        cutter centre lies (along +Y_m on the right-hand machine, where A_i = (0, E_m, -X_B) as in
+        docs/theory/generation.md, Eqs. (G5)-(G6)).
     ratio_of_roll : float
         m_ic = d psi_i / d psi_c at psi_c = 0, > 0 (1/sin gamma_m for crown-gear generation).
     modified_roll : tuple of float
@@ -57,7 +59,8 @@ class MachineSettings:
         ``((psi_1, ..., psi_m), (dE_1, ..., dE_m))``: psi_c nodes (rad, strictly increasing, m >= 2) and blank-offset
         increments (mm) interpolated linearly between them and extrapolated linearly beyond, added to the constant and
         polynomial parts (the instantaneous blank offset of seed 001 §4.3.1 step 3). dE_m/dt = (dE_m/dpsi_c) omega_c
-        enters the relative velocity (ERRATA §1.1 Eq. (15)); at a node the slope of the segment on the side of
+        enters the relative velocity (docs/theory/generation.md, Eqs. (G5)-(G6)); at a node the slope of the segment on
+        the side of
         psi_c = 0 is used. A third tuple ``(M_1, ..., M_m)`` (mm/rad^2) of second derivatives at the nodes makes it a
         cubic spline (``spiralbevel._core.generation.table_offset``). Empty: no table.
     """
@@ -106,13 +109,15 @@ class MachineSettings:
 
         A = R_m cos(theta_f) is the mean point in the root plane; with the nominal cutter radius r_c and the mean
         spiral angle beta_m, S_r = sqrt(A^2 + r_c^2 - 2 A r_c sin beta_m), q = asin(r_c cos beta_m / S_r);
-        gamma_m = root angle. ERRATA §1.2 Table 4 'check' column: seed 001 gear, A = 115.8417 mm, S_r = 115.079 mm,
+        gamma_m = root angle. docs/theory/example.md#table-4 and docs/theory/generation.md, Eq. (G12) 'check' column:
+        seed 001 gear, A = 115.8417 mm, S_r = 115.079 mm,
         q = 59 deg 20' 06.8".
 
         Ratio of roll: ``roll="pitch"`` (default) m_ic = cos(theta_f)/sin(delta), which puts the instantaneous axis of
         the relative motion on the member's pitch line (the generating crown gear, pitch angle 90 deg - theta_f about
         the cradle axis, rolls on the pitch cone); 1.0598 for the seed 001 gear, printed 1.06 in Table 4.
-        ``roll="root"``: m_ic = 1/sin(gamma_m), pure rolling of the cradle plane on the root cone (ERRATA §3.1 step 4);
+        ``roll="root"``: m_ic = 1/sin(gamma_m), pure rolling of the cradle plane on the root cone
+        (docs/theory/generation.md, Eq. (G6) (pure rolling m_ic = 1/sin gamma_m));
         1.0783 for the seed 001 gear. With it the cutter tip line lies on the instantaneous axis, so the relative
         velocity vanishes along the generated root line.
 
@@ -126,7 +131,8 @@ class MachineSettings:
         """
         member, side = Member(member), Side(side)
         if cutter.side is not side:
-            raise DesignError.single("cutter.blade", cutter.blade.value, f"{'inner' if side is Side.CONVEX else 'outer'}"
+            raise DesignError.single("cutter.blade", cutter.blade.value,
+                                     f"{'inner' if side is Side.CONVEX else 'outer'}"
                                      f" for the {side.value} side", "-")
         i = member.index
         Rm = float(blank.Rm)
@@ -160,7 +166,8 @@ class MachineSettings:
 
         The kernel frame is the left-hand machine, where the cutter centre lies on the +Y_m side; a positive blank
         offset moves the work AWAY from the cutter-centre side, i.e. along -Y_m there (and along +Y_m on the
-        right-hand machine, as A_i = (0, E_m, -X_B) in ERRATA §1.1). Hence E enters the kernel with a minus sign.
+        right-hand machine, as A_i = (0, E_m, -X_B) in docs/theory/generation.md, Eq. (G5)). Hence E enters the kernel
+        with a minus sign.
         """
         return dict(S=float(self.radial_setting), q=float(self.cradle_angle), gamma=float(self.machine_root_angle),
                     XD=float(self.machine_centre_to_back), XB=float(self.sliding_base), E=-float(self.blank_offset),

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Protocol, TypeGuard
 
 import numpy as np
 
@@ -41,7 +41,7 @@ class FlankParams:
     psi_sign : int
         +1 or -1: the branch of the domain (sign of psi).
     side : Side
-        CONVEX where sign(psi) = sign(beta), else CONCAVE (ERRATA §0.1 table).
+        CONVEX where sign(psi) = sign(beta), else CONCAVE (docs/theory/logspiral.md, Eq. (S9) (#flank-types)).
     """
 
     rho0: float
@@ -51,7 +51,7 @@ class FlankParams:
     side: Side
 
 
-def _finite(x) -> bool:
+def _finite(x) -> TypeGuard[float]:
     try:
         return math.isfinite(float(x))
     except (TypeError, ValueError):
@@ -87,7 +87,7 @@ def check_flank(flank: FlankLike, domain) -> FlankParams:
             problems.append(Problem(f"domain.{name}", getattr(domain, name, None), "a finite number", "rad"))
     if problems:
         raise DesignError(problems)
-    rho0, delta, beta = float(rho0), float(delta), float(beta)
+    rho0, delta, beta = float(rho0), float(delta), float(beta)  # type: ignore[arg-type]  # finite: checked above
     d = domain
     if not d.phi_min < d.phi_max:
         problems.append(Problem("domain.phi_max", d.phi_max, f"> phi_min = {d.phi_min!r}", "rad"))
@@ -95,14 +95,16 @@ def check_flank(flank: FlankLike, domain) -> FlankParams:
         problems.append(Problem("domain.psi_max", d.psi_max, f"> psi_min = {d.psi_min!r}", "rad"))
     elif d.psi_min <= 0 <= d.psi_max:
         problems.append(Problem("domain.psi_min", d.psi_min, "psi_min > 0 or psi_max < 0", "rad",
-                                "psi = 0 is the singular (cuspidal) edge of the flank, ERRATA §0.1"))
+                                "psi = 0 is the singular (cuspidal) edge of the flank, "
+                                "docs/theory/logspiral.md#singular-edge"))
     if not math.isclose(float(d.base_cone_angle), delta, rel_tol=1e-12, abs_tol=0.0):
         problems.append(Problem("domain.base_cone_angle", d.base_cone_angle, f"= flank.base_cone_angle = {delta!r}",
                                 "rad", "the domain belongs to another flank"))
     if not problems and max(abs(d.psi_min - beta), abs(d.psi_max - beta)) >= math.pi / 2:
         problems.append(Problem("domain.psi_min/psi_max", (d.psi_min, d.psi_max),
                                 f"|psi - beta| < pi/2 with beta = {beta!r}", "rad",
-                                "outside it n_out = sign(psi) n is not the outward normal, ERRATA §0.1"))
+                                "outside it n_out = sign(psi) n is not the outward normal, "
+                                "docs/theory/logspiral.md, Eq. (S9)"))
     if problems:
         raise DesignError(problems)
     psi_sign = 1 if d.psi_min > 0 else -1
@@ -129,7 +131,8 @@ def outward_geometry(varphi, phi, p: FlankParams) -> dict:
 
     Notes
     -----
-    n_out = sign(psi) n (ERRATA §0.1). The kernel's k is positive when the surface bends toward n, so the
+    n_out = sign(psi) n (docs/theory/logspiral.md, Eq. (S9) (#flank-types)). The kernel's k is positive when the surface
+    bends toward n, so the
     convex-positive curvature of docs/conventions.md is kappa = -sign(psi) k. e1 is flipped with n (e1_out =
     sign(psi) m) so that e1 x e2 = n_out holds with the kernel's e2.
     """

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -58,7 +59,7 @@ def _check_parameters(parameters) -> tuple:
     return parameters
 
 
-def apply_changes(cutter, settings, changes: dict):
+def apply_changes(cutter, settings, changes: dict) -> tuple[Any, Any]:
     """(cutter, settings) with the named parameters changed by the given amounts (see ``PARAMETERS``)."""
     s_changes, c_changes = {}, {}
     for name, delta in changes.items():

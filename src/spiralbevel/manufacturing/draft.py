@@ -1,8 +1,9 @@
-"""Forging draft of a log-spiral flank: where can the forged part leave the die? (seed 000 §5.1, ERRATA §0.2 item 24)
+"""Forging draft of a log-spiral flank: where can the forged part leave the die? (seed 000 §5.1,
+docs/theory/logspiral.md, Eq. (S13))
 
 The part moves along the unit die direction v_d relative to the die. A flank point can be released without damage
 when its outward normal does not face the motion, n_out · v_d ≤ 0 (seed 000 Eq. (38) with the outward normal).
-For v_d = +z, n_out·z = -sign(psi) sin(psi - beta) cos(delta) (ERRATA §0.2 item 24), so
+For v_d = +z, n_out·z = -sign(psi) sin(psi - beta) cos(delta) (docs/theory/logspiral.md, Eq. (S13)), so
 
 * convex flank (sign psi = sign beta): draftable iff |varphi - phi| ≥ |beta| / sin(delta), i.e. |psi| ≥ |beta|;
 * concave flank: always draftable.
@@ -184,7 +185,7 @@ def analytic_failing_fraction(flank: FlankLike, domain, die_direction=(0.0, 0.0,
     Notes
     -----
     With a = min|psi|, b = max|psi| over the domain, the failing set for v_d = +z is a <= |psi| < min(b, |beta|)
-    on the convex flank and empty on the concave flank (ERRATA §0.2 item 24); the fraction is
+    on the convex flank and empty on the concave flank (docs/theory/logspiral.md, Eq. (S13)); the fraction is
     (cos a - cos min(b, max(a, |beta|))) / (cos a - cos b). For v_d = -z the complement.
     """
     p = check_flank(flank, domain)
@@ -218,7 +219,8 @@ def draft_map(flank: FlankLike, domain, die_direction=(0.0, 0.0, 1.0), n_phi: in
 
     Notes
     -----
-    seed 000 Eq. (38) with the outward normal n_out = sign(psi) n (ERRATA §0.1, §0.2 item 24): a point is draftable
+    seed 000 Eq. (38) with the outward normal n_out = sign(psi) n (docs/theory/logspiral.md, Eqs. (S9), (S13)): a point
+    is draftable
     iff n_out · v_d <= 0. The failing area is the integral of the area element
     dA = sqrt(EG - F^2) dvarphi dphi = rho^2 |sin psi| cos(delta)/|sin beta| dpsi dphi over {n_out · v_d > 0}: each
     grid cell is split into two triangles, n_out·v_d and dA are interpolated linearly and the positive part is

@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -121,7 +122,7 @@ class RelievedFlank:
     """
 
     flank: FlankLike
-    domain: object
+    domain: Any
     relief: "ForgingRelief | None" = None
     base_deviation: object = None
 

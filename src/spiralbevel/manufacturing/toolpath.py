@@ -1,7 +1,8 @@
 """5-axis ball-end milling of a log-spiral flank along its lengthwise lines of curvature (seed 000 §5.2).
 
 The passes are the phi-curves (varphi = const): planar log spirals, which are lines of curvature because F = M = 0
-(ERRATA §0.2 items 16, 23), as seed 000 §5.2 recommends to keep the curvature streamlines. Neighbouring passes are
+(docs/theory/logspiral.md, Eqs. (S7)-(S8)), as seed 000 §5.2 recommends to keep the curvature streamlines. Neighbouring
+passes are
 spaced across the profile direction e1 from a requested scallop height with the exact circle model of
 :mod:`spiralbevel.manufacturing.scallop`, using the profile curvature kappa1 (the normal curvature across the pass).
 """
@@ -141,7 +142,8 @@ def _check_angle(value, field):
 
 
 def _kappa1(psi, rho, beta):
-    """Profile curvature, convex positive: cos(psi - beta) / (rho |sin psi|) (ERRATA §0.1 k1 with n_out)."""
+    """Profile curvature, convex positive: cos(psi - beta) / (rho |sin psi|) (docs/theory/logspiral.md, Eq. (S9)
+    (#flank-types) k1 with n_out)."""
     return np.cos(psi - beta) / (rho * np.abs(np.sin(psi)))
 
 
@@ -214,7 +216,7 @@ def _march(p, psi_lo, psi_hi, domain, R, h, max_paths):
     guess = 0.01 * (psi_hi - psi_lo) / s
     while out[-1] < end:
         a = out[-1]
-        f = lambda d: _pair_ratio(a, d, p, psi_lo, psi_hi, domain, R, h) - 1.0  # noqa: E731
+        f = lambda d, a=a: _pair_ratio(a, d, p, psi_lo, psi_hi, domain, R, h) - 1.0  # noqa: E731
         rest = end - a
         if rest <= 1e-12 * (end - start):  # the last pass is (numerically) the end corner
             out[-1] = end
@@ -329,7 +331,8 @@ def plan_toolpath(flank: FlankLike, domain, tool_radius: float, scallop_height: 
     -----
     Passes: varphi = const curves, ds = |d rho| / cos(beta). Between passes varphi_a and varphi_b, for every shared
     phi the surface arc across is rho cos(delta)/sin(delta) |cos psi_a - cos psi_b| (integral of |r_varphi|,
-    ERRATA §0.1 E). The next pass is the farthest one for which that arc stays below the exact stepover of
+    docs/theory/logspiral.md, Eqs. (S3)-(S8) E). The next pass is the farthest one for which that arc stays below the
+    exact stepover of
     :func:`~spiralbevel.manufacturing.scallop.stepover_for_scallop` for the most convex profile curvature kappa1 of
     the strip, at every one of 257 phi samples (brentq on varphi). The lengthwise curvature kappa2 enters only the
     gouge check. Global interference with the neighbouring tooth is not checked.
@@ -348,7 +351,8 @@ def plan_toolpath(flank: FlankLike, domain, tool_radius: float, scallop_height: 
     _gouge_check(p, psi_lo, psi_hi, domain, R)
     _scallop_limit_check(p, psi_lo, psi_hi, domain, R, h)
     varphis = _march(p, psi_lo, psi_hi, domain, R, h, int(max_paths))
-    paths, kept = [], []
+    paths: list = []
+    kept: list = []
     for vphi in varphis:
         path = _make_path(vphi, p, psi_lo, psi_hi, domain, R, lead, tilt, max_segment, zigzag and len(paths) % 2)
         if path is not None:

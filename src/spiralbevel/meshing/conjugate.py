@@ -2,7 +2,8 @@
 
 The deviation is measured three ways: the distance of each envelope point to the candidate surface (foot point by
 batched Newton), the normal mismatch 1 - |n_env . n_cand| at the foot point, and optionally the spread of a surface
-invariant (for seed-000 flanks ln rho - phi sin(delta) cot(beta) = ln rho0, ERRATA §0.1 and §2.2). A wrong
+invariant (for seed-000 flanks ln rho - phi sin(delta) cot(beta) = ln rho0, docs/theory/logspiral.md, Eq. (S2) and
+docs/theory/gearing.md, Eq. (M8)). A wrong
 candidate (for instance a base cone that violates sin d1 / sin g1 = sin d2 / sin g2) gives a measurable deviation
 that :class:`ConjugacyReport` reports and flags.
 """
@@ -220,7 +221,8 @@ def compare_conjugate(points, normals, candidate, bounds, *, invariant: Callable
 def logspiral_invariant(points, base_cone_angle: float, spiral_angle: float, psi_sign: float = 1.0):
     """ln(rho0 / 1 mm) of the seed-000 flank (base cone, spiral angle) through each point.
 
-    ln rho - phi sin(delta) cot(beta) is constant on one log-spiral flank (ERRATA §0.1, §2.2). The value is defined
+    ln rho - phi sin(delta) cot(beta) is constant on one log-spiral flank (docs/theory/logspiral.md, Eq. (S2) and
+    docs/theory/gearing.md, Eq. (M8)). The value is defined
     modulo 2 pi sin(delta) |cot(beta)| (turns of the spiral); it is returned reduced to within half a period of its
     median, so its spread measures how far the points are from a single flank.
 

@@ -1,4 +1,5 @@
-"""The contact system of TCA for one assembled pair: seed 001 Eq. (16) (ERRATA §1.1) in the pair frame of
+"""The contact system of TCA for one assembled pair: seed 001 Eq. (16) (docs/theory/tca.md, Eq. (T5)) in the pair frame
+of
 docs/conventions.md, batched over pinion rotations and tooth pairs.
 
 Tooth pair k is pinion tooth k (the reference flank turned by +2 pi k / z1 about the pinion axis) against gear tooth
@@ -56,7 +57,7 @@ class ContactProblem:
         if problems:
             raise DesignError(problems)
         self.pinion, self.gear = pinion, gear
-        self.z1, self.z2, self.shaft_angle = int(kinematics.z1), int(kinematics.z2), float(s)
+        self.z1, self.z2, self.shaft_angle = int(kinematics.z1), int(kinematics.z2), float(s)  # type: ignore[arg-type]
         self.misalignment = misalignment if misalignment is not None else Misalignment()
         self.axes = self.misalignment.axes(self.shaft_angle)
         if scale is None:

@@ -15,7 +15,8 @@ the contact ellipse has semi-axes
     a = sqrt(2 delta / lam_1) = sqrt(delta / A),     b = sqrt(2 delta / lam_2) = sqrt(delta / B),
 
 the major axis along the eigenvector of lam_1 (Litvin & Fuentes, Gear Geometry and Applied Theory, 2nd ed.,
-§9.6: 2a = 2 |delta / A|^(1/2)). delta = 0.00635 mm is Gleason's 0.00025 in (seed 001 §4.3.2, ERRATA §1.1).
+§9.6: 2a = 2 |delta / A|^(1/2)). delta = 0.00635 mm is Gleason's 0.00025 in (seed 001 §4.3.2, docs/theory/ltca.md, Eq.
+(L6) / docs/theory/tca.md, Eq. (T6)).
 K must be positive definite; lam_1 = 0 is line contact (a = inf), lam_1 < 0 means the surfaces interfere.
 """
 
@@ -159,7 +160,8 @@ def hertz_semi_axes(lam, approach):
 
     The elastic contact (Hertz) is smaller than the geometric ellipse s(xi) = approach of :func:`ellipse_axes`: with
     A = lam_1/2 (Johnson, Contact Mechanics, Eqs. (4.39)-(4.41)) a^2 = approach (K - E) / (A K e^2),
-    b = a sqrt(1 - e^2); a sphere (e = 0) gives a^2 = R approach, half of the geometric a^2 = 2 R approach. Non-positive lam: inf.
+    b = a sqrt(1 - e^2); a sphere (e = 0) gives a^2 = R approach, half of the geometric a^2 = 2 R approach. Non-positive
+    lam: inf.
     """
     _check_approach(approach)
     lam = np.asarray(lam, float)

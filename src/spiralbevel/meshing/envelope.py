@@ -3,7 +3,8 @@
 Given any parametric surface of member 1 (the pinion) and the pair kinematics, the solver finds
 
 * for each surface point (u, v) the pinion rotation phi1 at which it is a contact point (the equation of meshing
-  f(u, v, phi1) = (r1 x n1) . R(a1, -phi1) p = 0, ERRATA §2.2), and the conjugate point and normal on member 2 in
+  f(u, v, phi1) = (r1 x n1) . R(a1, -phi1) p = 0, docs/theory/gearing.md, Eq. (M5)), and the conjugate point and normal
+  on member 2 in
   the gear member frame, r2 = R_y(-S) R(a2, (z1/z2) phi1) R(a1, phi1) r1 (:func:`solve_envelope`);
 * the instantaneous contact line at a given phi1: for each u, the v with f(u, v, phi1) = 0
   (:func:`solve_contact_line`).
@@ -135,7 +136,7 @@ def solve_envelope(surface: Surface, kinematics: BevelPairKinematics, u, v, *, b
         Which of the two roots of the meshing equation (two planes/surfaces of action, drive and coast):
         ``+1`` the root where f decreases through zero as phi1 grows (df/dphi1 < 0), ``-1`` the one where it
         increases, ``None`` the root nearest to ``phi1_guess``. With outward normals, ``+1`` is the plane
-        phi1 + varphi = +arccos(tan d1 / tan g1) for a seed-000 flank with psi > 0 (ERRATA §2.2).
+        phi1 + varphi = +arccos(tan d1 / tan g1) for a seed-000 flank with psi > 0 (docs/theory/gearing.md, Eq. (M7)).
     phi1_guess : array_like, rad
         Start value; every root is returned within pi of it (roots are 2 pi periodic).
     tol : float
@@ -159,7 +160,8 @@ def solve_envelope(surface: Surface, kinematics: BevelPairKinematics, u, v, *, b
     Notes
     -----
     For constant-ratio rotation about a1 the meshing function is exactly f = A cos phi1 + B sin phi1 + C with
-    (A, B, C) from q = r1 x n1 (ERRATA §2.2), so both roots are found in closed form for all points at once and then
+    (A, B, C) from q = r1 x n1 (docs/theory/gearing.md, Eq. (M5)), so both roots are found in closed form for all points
+    at once and then
     polished by two vectorized Newton steps with the analytic derivative; the residual is re-evaluated with the
     rotation-matrix form of f.
     """
@@ -282,7 +284,7 @@ def solve_contact_line(surface: Surface, kinematics: BevelPairKinematics, phi1: 
     Notes
     -----
     Vectorized safeguarded Newton (Newton steps inside a sign-change bracket, bisection when a step leaves it or
-    stalls), derivative by forward differences; all u at once. Equation: ERRATA §2.2.
+    stalls), derivative by forward differences; all u at once. Equation: docs/theory/gearing.md, Eq. (M5)
     """
     if solve_for not in ("u", "v"):
         raise DesignError.single("solve_for", solve_for, "'u' or 'v'", "-")

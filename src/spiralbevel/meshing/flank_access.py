@@ -8,7 +8,8 @@ common ground of the measurement grid (``spiralbevel.manufacturing.measurement``
 Locating a point means finding the flank point on the circle of given axial position z and radius about the member
 axis (the "projected tooth" coordinates of docs/conventions.md). ``ToothFlank`` has its own batched Newton
 (``ToothFlank.locate``); a ``DesignedFlank`` is located in closed form (the log-spiral flank meets the cone of
-half-angle nu along psi = +-acos(cos nu / cos delta), ERRATA §0.3, and the sphere of radius rho at
+half-angle nu along psi = +-acos(cos nu / cos delta), docs/theory/logspiral.md, Eqs. (S10)-(S11) (#cones), and the
+sphere of radius rho at
 phi = ln(rho/rho0) tan(beta)/sin(delta)); a callable surface by a batched Newton solve on (u, v).
 """
 
@@ -126,7 +127,8 @@ def logspiral_parameters(flank, rho, nu):
 
     Notes
     -----
-    phi = ln(rho/rho0) tan(beta)/sin(delta) (seed 000 Eq. (9)); |psi| = acos(cos nu / cos delta) (ERRATA §0.3) with
+    phi = ln(rho/rho0) tan(beta)/sin(delta) (seed 000 Eq. (9)); |psi| = acos(cos nu / cos delta)
+    (docs/theory/logspiral.md, Eqs. (S10)-(S11) (#cones)) with
     the sign of the flank's branch; varphi = phi + psi / sin(delta). The rotation of the flank about +z does not
     change rho or nu.
     """

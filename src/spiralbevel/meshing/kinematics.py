@@ -1,4 +1,5 @@
-"""Kinematics of a bevel pair with intersecting axes (seed 002, corrected in ERRATA §2.2; docs/conventions.md).
+"""Kinematics of a bevel pair with intersecting axes (seed 002, corrected in docs/theory/gearing.md, Eqs. (M1)-(M2);
+docs/conventions.md).
 
 Fixed frame with the common apex O. Pinion axis a1 = (0, 0, 1), gear axis a2 = (sin S, 0, cos S), both pointing from
 O into the bodies (S = shaft angle). The pinion turns by phi1 about a1, the gear by phi2 = -(z1/z2) phi1 about a2, so
@@ -32,7 +33,7 @@ class BevelPairKinematics:
 
     Notes
     -----
-    Seed 002 Eqs. (7)-(9), (13)-(16) with the corrections of ERRATA §2.1 items 6-13 and the clean form of §2.2:
+    Seed 002 Eqs. (7)-(9), (13)-(16) with the corrections of docs/theory/gearing.md, Eqs. (M1)-(M6):
     w(1) = w1 a1, w(2) = -w2 a2 with w2/w1 = z1/z2, w(12) = w(1) - w(2) = (w1 cos g1 + w2 cos g2) p and
     v(12) = w(12) x r. Member frames (docs/conventions.md): a pinion point r1 sits at R(a1, phi1) r1 in the fixed
     frame, a gear point r2 at R(a2, phi2) R_y(S) r2.
@@ -105,7 +106,7 @@ class BevelPairKinematics:
         """Pinion member frame -> gear member frame with the pinion at phi1 and the gear at gear_angle(phi1).
 
         M = R_y(-S) R(a2, (z1/z2) phi1) R(a1, phi1) = gear_to_fixed(phi2)^T pinion_to_fixed(phi1),
-        shape ``phi1.shape + (3, 3)`` (ERRATA §2.2, "conjugate surface").
+        shape ``phi1.shape + (3, 3)`` (docs/theory/gearing.md, Eq. (M6), "conjugate surface").
         """
         return _m.pinion_to_gear(np.asarray(phi1, float), self.shaft_angle, self.ratio)
 
@@ -127,11 +128,12 @@ class BevelPairKinematics:
 
     # ----------------------------------------------------------------------------------------- meshing equation
     def meshing_velocity_form(self, r, n, omega1=1.0):
-        """n . v(12) at fixed-frame points and normals, mm/s (seed 002 Eq. (15), ERRATA §2.1 item 10)."""
+        """n . v(12) at fixed-frame points and normals, mm/s (seed 002 Eq. (15), docs/theory/gearing.md, Eqs.
+        (M2)-(M4))."""
         return np.einsum("...i,...i->...", np.asarray(n, float), self.relative_velocity(r, omega1))
 
     def meshing_willis_form(self, r, n):
-        """det[r, n, p] = (r x n) . p at fixed-frame points and normals, mm (ERRATA §2.2).
+        """det[r, n, p] = (r x n) . p at fixed-frame points and normals, mm (docs/theory/gearing.md, Eq. (M4)).
 
         n . v(12) = (w1 cos g1 + w2 cos g2) det[r, n, p]: the common normal meets the pitch line.
         """

@@ -1,12 +1,12 @@
 """Motion curves (functions of transmission errors): parabolic, quartic, and the predesigned fourth-order combined
-motion curve (CMC) of seed 001 §2 (Eqs. (1)-(6) as decoded in ERRATA §1.1).
+motion curve (CMC) of seed 001 §2 (Eqs. (1)-(6) as decoded in docs/theory/tca.md, Eqs. (T1)-(T4)).
 
 Units: the abscissa x = phi1 - phi10 is the pinion rotation from the mean contact point in rad; Delta phi2 is the
 gear's transmission error in rad (reports convert to arcsec with :data:`ARCSEC`). Sign: the TE convention of
 :class:`~spiralbevel.meshing.tca_result.TCAResult` (positive = gear ahead); a crowned pair has a2 < 0 and the pair in
 contact is the upper envelope of the pair curves.
 
-CMC formation (seed 001 §2.2, ERRATA §1.1; Table 3 of the seed is inconsistent and is not used):
+CMC formation (seed 001 §2.2, docs/theory/tca.md, Eqs. (T1)-(T4); Table 3 of the seed is inconsistent and is not used):
 
 * Step 1: least-squares quartic a2 x^2 + a3 x^3 + a4 x^4 through the designer's control points A_i (Eq. 3);
 * Step 2: its two non-zero roots B1(b1, 0), B3(b3, 0), b1 < 0 < b3, and the parabola through B1, B2(0, b2), B3 in
@@ -87,7 +87,8 @@ def quartic_roots(a):
 
 
 def parabola_through(x, b1, b2, b3):
-    """Parabola through B1(b1, 0), B2(0, b2), B3(b3, 0): b2 (x - b1)(x - b3) / (b1 b3) (ERRATA §1.1 Eq. (4))."""
+    """Parabola through B1(b1, 0), B2(0, b2), B3(b3, 0): b2 (x - b1)(x - b3) / (b1 b3) (docs/theory/tca.md, Eq.
+    (T3))."""
     x = np.asarray(x, float)
     return b2 * (x - b1) * (x - b3) / (b1 * b3)
 
@@ -193,12 +194,12 @@ class CombinedMotionCurve:
             ka, kb = np.argmax(V[i - 1]), np.argmax(V[i + 1])
             lo, hi = x[i - 1], x[i + 1]
             if ka != kb:
-                def g(t):
+                def g(t, ka=ka, kb=kb):
                     return self(t - k[ka] * P) - self(t - k[kb] * P)
                 t = brentq(g, lo, hi, xtol=1e-16) if g(lo) * g(hi) < 0 else x[i]
                 out.append(float(self(t - k[ka] * P)))
             else:
-                r = minimize_scalar(lambda t: -sign * float(self(t - k[ka] * P)), bounds=(lo, hi),
+                r = minimize_scalar(lambda t, sign=sign, ka=ka: -sign * float(self(t - k[ka] * P)), bounds=(lo, hi),
                                     method="bounded", options={"xatol": 1e-14})
                 out.append(max(sign * float(self(r.x - k[ka] * P)), sign * float(E[i])) * sign)
         return out[0] - out[1]
@@ -229,7 +230,8 @@ def seed001_control_points(z1=23, hump=0.25, skew=0.15, n=10):
 
 def seed001_cmc(magnitude=3.0 * ARCSEC, z1=23, **kw) -> CombinedMotionCurve:
     """The regenerated CMC of seed 001 §5: Steps 1-4 on :func:`seed001_control_points`, scaled so that the depth of
-    the TE envelope over one mesh cycle (2 pi / z1) equals ``magnitude`` (rad; 3 arcsec, ERRATA §1.2 Table 2)."""
+    the TE envelope over one mesh cycle (2 pi / z1) equals ``magnitude`` (rad; 3 arcsec,
+    docs/theory/example.md#table-2)."""
     x, y = seed001_control_points(z1, **kw)
     c = CombinedMotionCurve.from_control_points(x, y)
     return c.scaled(magnitude / c.depth(2 * np.pi / z1))

@@ -1,4 +1,4 @@
-"""Tooth contact analysis (TCA) of a bevel pair: seed 001 §4 (Eq. (16), ERRATA §1.1) on any two
+"""Tooth contact analysis (TCA) of a bevel pair: seed 001 §4 (Eq. (16), docs/theory/tca.md, Eq. (T5)) on any two
 :class:`~spiralbevel.meshing.contact_surface.ContactSurface` flanks.
 
 For each pinion rotation phi1 the contact system (coincident points, opposite outward normals; 5 equations in the
@@ -398,6 +398,7 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         params1=rs(x[:, 0:2]), params2=rs(x[:, 2:4]), point1=rs(r1), normal1=rs(n1), point2=rs(r2), normal2=rs(n2),
         point_fixed=rs(pf), normal_fixed=rs(n1f), residual=rs(res), pair=sel, status=status,
         semi_axes=axes_, ellipse_dirs1=dirs1, ellipse_dirs2=dirs2, relative_curvatures=lam,
-        approach=float(approach), transfer_phi1=np.asarray(transfers), transfer_te=np.asarray(transfer_te), z1=z1, z2=z2,
+        approach=float(approach), transfer_phi1=np.asarray(transfers), transfer_te=np.asarray(transfer_te),
+        z1=z1, z2=z2,
         shaft_angle=prob.shaft_angle, iterations=int(iters), edges=tuple(edges),
     )

@@ -179,7 +179,8 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
 
     Notes
     -----
-    Candidates at a pair whose surface contact is EDGE and does not trail the best real contact of another pair: every named boundary of both members (but the end of the
+    Candidates at a pair whose surface contact is EDGE and does not trail the best real contact of another pair: every
+    named boundary of both members (but the end of the
     generated surface), started from the extended solution projected onto that boundary. A solution counts if the
     edge point lies on the rest of its own flank's boundary segment (every other margin >= 0), the touched point on
     the other member's real flank, the flank normals of the two members are opposed and the TE is within half a gear

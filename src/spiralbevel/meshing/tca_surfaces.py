@@ -1,5 +1,5 @@
 """Log-spiral flanks as :class:`~spiralbevel.meshing.contact_surface.ContactSurface`, and an exactly conjugate
-log-spiral pair (seed 000 Eq. (16); seed 002 conjugacy theorem, ERRATA §2.2).
+log-spiral pair (seed 000 Eq. (16); seed 002 conjugacy theorem, docs/theory/gearing.md, Eq. (M8) (#conjugacy)).
 
 These are the reference surfaces of the TCA tests and benchmark: a consistent pair (sin d1 : sin d2 = z1 : z2, gear
 spiral parameter -beta) is in line contact with zero transmission error; a crowned pinion
@@ -9,6 +9,7 @@ spiral parameter -beta) is in line contact with zero transmission error; a crown
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -36,13 +37,14 @@ class LogSpiralSurface:
         Rotation of the flank about +z (phasing).
     psi_range, phi_range : (2,) float, rad, optional
         Flank domain: signed psi = (varphi - phi) sin(delta) between root and face cones, phi between toe and heel
-        spheres (ERRATA §0.1 parallelogram). ``contains`` is all True when omitted.
+        spheres (docs/theory/logspiral.md, Eq. (S10)). ``contains`` is all True when omitted.
     reference_params : (2,) float, optional
         (varphi, phi) near the mean contact point.
 
     Notes
     -----
-    Outward normal n_out = sign(psi) n with n of ERRATA §0.1 Eq. (21); derivatives analytic (ERRATA §0.1):
+    Outward normal n_out = sign(psi) n with n of docs/theory/logspiral.md, Eq. (S4); derivatives analytic (Eqs.
+    (S3)-(S8)):
     n_varphi = cos(delta) cos(psi - beta) m, n_phi = sin(delta) [cos(psi - beta) t + sin(psi - beta) w].
     """
 
@@ -61,11 +63,13 @@ class LogSpiralSurface:
                                      "rho0 > 0, 0 < delta < pi/2, 0 < |beta| < pi/2", "mm, rad, rad")
         if self.psi_range is not None and self.psi_range[0] * self.psi_range[1] <= 0:
             raise GeometryError.single("psi_range", self.psi_range, "an interval not containing 0", "rad",
-                                       "psi = 0 is the singular (cuspidal) edge, ERRATA §0.1")
+                                       "psi = 0 is the singular (cuspidal) edge, "
+                                       "docs/theory/logspiral.md#singular-edge")
         object.__setattr__(self, "_R", rot_z(self.azimuth))
 
     def _kernel(self, params, deriv):
-        """Lean evaluation of seed 000 Eq. (16) and ERRATA §0.1 (19)-(21): r, n_out and optionally dr, dn."""
+        """Lean evaluation of seed 000 Eq. (16) and docs/theory/logspiral.md, Eqs. (S3)-(S8): r, n_out and optionally
+        dr, dn."""
         p = np.asarray(params, float)
         vphi, phi = p[..., 0], p[..., 1]
         d, b = self.delta, self.beta
@@ -173,8 +177,9 @@ class LogSpiralSurface:
         return self.evaluate(self.params_of(psi, phi))[0]
 
     def with_changes(self, **kw) -> "LogSpiralSurface":
-        d = dict(rho0=self.rho0, delta=self.delta, beta=self.beta, azimuth=self.azimuth, psi_range=self.psi_range,
-                 phi_range=self.phi_range, reference_params=self.reference_params)
+        d: dict[str, Any] = dict(rho0=self.rho0, delta=self.delta, beta=self.beta, azimuth=self.azimuth,
+                                 psi_range=self.psi_range, phi_range=self.phi_range,
+                                 reference_params=self.reference_params)
         d.update(kw)
         return LogSpiralSurface(**d)
 
@@ -216,16 +221,18 @@ def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressur
     ----------
     z1, z2 : int
     shaft_angle, normal_pressure_angle, spiral_angle : float, rad
-        Sigma, alpha_n and the mean spiral angle on the pitch cone (ERRATA §0.1 design recipe).
+        Sigma, alpha_n and the mean spiral angle on the pitch cone (docs/theory/logspiral.md, Eq. (S12)).
     mean_cone_distance, face_width : float, mm
     addendum, dedendum : (2,) float, mm
         Pinion and gear; they set the root and face cones of the flank domains (angles atan(h / A_m)).
 
     Notes
     -----
-    Recipe (ERRATA §0.1): tan g1 = sin S / (z2/z1 + cos S), tan a_t = tan a_n / cos b_m, sin d_i = sin g_i cos a_t,
+    Recipe (docs/theory/logspiral.md, Eq. (S12)): tan g1 = sin S / (z2/z1 + cos S), tan a_t = tan a_n / cos b_m, sin d_i
+    = sin g_i cos a_t,
     sin beta = cos a_n sin b_m. The gear flank has base cone d2, spiral parameter -beta and is phased (azimuth) so
-    that both flanks pass through the pitch point A_m p with opposite outward normals (ERRATA §2.2 theorem).
+    that both flanks pass through the pitch point A_m p with opposite outward normals (docs/theory/gearing.md, Eq. (M8),
+    #conjugacy).
     """
     S = float(shaft_angle)
     g1, g2, _, d1, d2, beta = pair_recipe(z1, z2, S, normal_pressure_angle, spiral_angle)
@@ -243,6 +250,7 @@ def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressur
         err = np.linalg.norm(r - target)
         if best is None or err < best[0]:
             best = (err, vphi, phi, rho0)
+    assert best is not None  # the scan above evaluates at least one candidate
     err, vphi1, phi1m, rho01 = best
     if err > 1e-9 * Am:
         raise GeometryError.single("pitch point", err, "< 1e-9 A_m", "mm", "pinion flank misses the pitch point")
@@ -276,6 +284,7 @@ def conjugate_logspiral_pair(z1=23, z2=65, shaft_angle=np.pi / 2, normal_pressur
         miss = np.linalg.norm(Rz @ r0 - r2) + np.linalg.norm(Rz @ n0 - n2_target)
         if best is None or miss < best[0]:
             best = (miss, psi2, q, tau)
+    assert best is not None  # the scan above evaluates at least one candidate
     miss, psi2, q2, tau = best
     if miss > 1e-9:
         raise GeometryError.single("gear phasing", miss, "< 1e-9", "mm", "no conjugate gear flank through the "

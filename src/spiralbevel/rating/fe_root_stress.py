@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Any
 from dataclasses import dataclass
 
 import numpy as np
@@ -163,7 +164,7 @@ def member_root_stress(member, convex, concave, z, side, n_fillet, points, pair_
     S = model.vertex_stress(U)
     s1 = max_principal(S)  # (n_cases, nv)
     env, grids = {}, {}
-    best = (-np.inf, None, None, None)
+    best: tuple[float, Any, Any, Any] = (-np.inf, None, None, None)
     for sd in ("convex", "concave"):
         nodes = mesh.flank_nodes[(0, sd)]
         grids[sd] = mesh.vertices[nodes]

@@ -61,7 +61,7 @@ def tooth_form(z_vn: float, mmn: float, alpha_n: float, rho_a0: float, h_a0: flo
     G = rho_a0 / m - h_a0 / m + x_hm
     H = 2.0 / z_vn * (0.5 * math.pi - E / m) - math.pi / 3.0
     theta = math.pi / 6.0
-    for it in range(100):
+    for it in range(100):  # noqa: B007 - it is reported after the loop
         new = 2.0 * G / z_vn * math.tan(theta) - H
         if abs(new - theta) < 1e-13:
             theta = new

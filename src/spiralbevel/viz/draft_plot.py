@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .layout import fixed_layout
@@ -30,7 +32,7 @@ def plot_draft(result, ax=None, coords: str = "varphi"):
     -----
     Colours: green = draftable (n_out · v_d <= 0), red = fails. The black line is the zero contour of n_out · v_d
     from the grid; the dashed line is the analytic boundary |varphi - phi| = |beta| / sin(delta) where it exists
-    (die direction along ±z, ERRATA §0.2 item 24). Angles are shown in degrees.
+    (die direction along ±z, docs/theory/logspiral.md, Eq. (S13)). Angles are shown in degrees.
     """
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap
@@ -50,7 +52,7 @@ def plot_draft(result, ax=None, coords: str = "varphi"):
     fail = (~result.draftable).astype(float)
     ax.pcolormesh(x, y, fail, shading="gouraud", cmap=ListedColormap(["#7fc97f", "#e3504a"]), vmin=0.0, vmax=1.0)
     g = result.normal_dot_die
-    handles = [Patch(color="#7fc97f", label="draftable"), Patch(color="#e3504a", label="fails")]
+    handles: list[Any] = [Patch(color="#7fc97f", label="draftable"), Patch(color="#e3504a", label="fails")]
     if g.min() < 0 < g.max():
         ax.contour(x, y, g, levels=[0.0], colors="k", linewidths=1.0)
         handles.append(plt.Line2D([], [], color="k", lw=1.0, label="n_out·v_d = 0 (grid)"))

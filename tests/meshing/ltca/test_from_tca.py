@@ -2,7 +2,7 @@
 
 Pair: the 23/65 log-spiral design of conftest.py, pinion concave flank crowned by a quadratic normal deviation
 (contact_surface.NormalDeviation), gear convex flank exact; coarse FE tooth segments (9 x 6 flank grids, quadratic
-tetrahedra) of both members. Seed 001 Eq. (18), ERRATA §1.1 "LTCA (18)".
+tetrahedra) of both members. Seed 001 Eq. (18), docs/theory/ltca.md, Eqs. (L1)-(L4).
 """
 
 import importlib.util
@@ -179,8 +179,8 @@ def test_separations_match_the_principal_curvatures(setup):
         errs.append(np.max(np.abs(w - wq)) / np.max(wq))
         # and the batched posed solver agrees with the single-contact solver of separation.py
         if half == 0.5:
-            pin = lambda u, v: _posed(s["p"], R1, u, v)  # noqa: E731
-            gea = lambda u, v: _posed(s["g"], R2, u, v)  # noqa: E731
+            pin = lambda u, v, R1=R1: _posed(s["p"], R1, u, v)  # noqa: E731
+            gea = lambda u, v, R2=R2: _posed(s["g"], R2, u, v)  # noqa: E731
             ref = surface_separations(pin, gea, pc.point, pc.normal, e1, st, st, tca.params1[i, j], tca.params2[i, j])
             np.testing.assert_allclose(w, ref.w, atol=1e-10)
     assert errs[0] < 0.15  # measured 0.11, 0.053, 0.025 (cubic terms of the crowned flank, lam1 ~ 6e-4 1/mm)

@@ -83,7 +83,7 @@ def _solve(surf1, surf2, P, a, b, nb):
 def test_love_rectangle_against_quadrature():
     a, b = 0.7, 0.3
     for x, y in [(2.0, 0.5), (-1.1, 1.3), (0.0, 3.0)]:
-        ref = dblquad(lambda yy, xx: 1.0 / np.hypot(x - xx, y - yy), -a, a, -b, b, epsabs=1e-12)[0]
+        ref = dblquad(lambda yy, xx, x=x, y=y: 1.0 / np.hypot(x - xx, y - yy), -a, a, -b, b, epsabs=1e-12)[0]
         assert rect_integral(x, y, a, b) == pytest.approx(ref, rel=1e-9)
     # centre of a square of side 2c: 8 c ln(1 + sqrt 2) (Johnson, Contact Mechanics, §3.3)
     assert rect_integral(0.0, 0.0, 0.5, 0.5) == pytest.approx(4.0 * np.log(1 + np.sqrt(2)), rel=1e-14)

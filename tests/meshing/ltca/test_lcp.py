@@ -1,4 +1,4 @@
-"""Load-distribution solver (seed 001 Eq. (18), ERRATA §1.1 "LTCA (18)") against brute-force enumeration."""
+"""Load-distribution solver (seed 001 Eq. (18), docs/theory/ltca.md, Eqs. (L1)-(L4)) against brute-force enumeration."""
 
 import itertools
 

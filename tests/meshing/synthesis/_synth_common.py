@@ -1,4 +1,4 @@
-"""Design case of the synthesis tests: seed 001 Table 2 (ERRATA §1.2), pinion concave / gear convex."""
+"""Design case of the synthesis tests: seed 001 Table 2 (docs/theory/example.md), pinion concave / gear convex."""
 
 import math
 

@@ -2,7 +2,8 @@
 
 For a pinion rotation phi1, unknowns x = (u1, psi1, u2, psi2, phi2): the pinion point R_z(phi1) r1(u1, psi1) and the
 gear point R(a2, phi2) R_y(Sigma) r2(u2, psi2) coincide (3 equations) and the outward normals are opposite (2
-equations: n1 + n2 projected on two fixed vectors across the mean normal). Seed 001 Eq. (16), ERRATA §1.1, in the
+equations: n1 + n2 projected on two fixed vectors across the mean normal). Seed 001 Eq. (16), docs/theory/tca.md, Eq.
+(T5), in the
 pair frame of docs/conventions.md. Solved by the batched Newton with forward-difference Jacobians, by continuation
 from the mean point in steps of ``step`` rad.
 """

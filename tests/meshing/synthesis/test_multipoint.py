@@ -1,4 +1,5 @@
-"""Multi-point control (seed 001 §4.3.1, Eqs. (16)-(17), ERRATA §1.1) on the seed 001 example: pinion concave /
+"""Multi-point control (seed 001 §4.3.1, Eqs. (16)-(17), docs/theory/tca.md, Eqs. (T5), (T8)) on the seed 001 example:
+pinion concave /
 gear convex (Tables 1, 2, 4), eta = 6 deg, a = 3.7 mm, CMC of 3 arcsec by Steps 1-4.
 
 Independent checks: the TE at the control points is measured again by the TCA engine on the regenerated flank, and
@@ -17,7 +18,6 @@ from spiralbevel.errors import DesignError
 from spiralbevel.generation import generate_flank
 from spiralbevel.meshing.contact_problem import ContactProblem
 from spiralbevel.meshing.motion_curves import seed001_cmc
-from spiralbevel.meshing.synthesis import synthesize_pinion
 from spiralbevel.meshing.synthesis.cmc_design import active_range, te_summary
 from spiralbevel.meshing.synthesis.multipoint import _Surface, multipoint_control, multipoint_tca
 
@@ -53,7 +53,7 @@ def spline_tca(spline):
 def test_control_point_errors_below_tolerance(synth_pos, cmc, controls, kind, spline):
     r = spline if kind == "spline" else multipoint_control(synth_pos, cmc, controls, interpolation=kind)
     assert r.law.kind == kind
-    assert np.all(r.control_point_errors <= 1e-9)             # Eq. (17) with an absolute tolerance (ERRATA §1.3 #6)
+    assert np.all(r.control_point_errors <= 1e-9)  # Eq. (17) with an absolute tolerance (docs/theory/tca.md, Eq. (T8))
     i = r.mean_index
     assert r.control_points[i] == 0.0 and r.offsets[i] == r.law.base == synth_pos.pinion_settings.blank_offset
     # the law passes through its nodes

@@ -26,10 +26,12 @@ def mc(blank, gear_table4):
 
 def test_mean_contact_on_pitch_line_and_meshing(mc, blank):
     kin = mc.kinematics
-    # depth 0: the gear reference point at R_m (ERRATA §3.1 step 7) turned onto the pitch line, |M| = R_m
+    # depth 0: the gear reference point at R_m (docs/theory/generation.md, Eqs. (G10)-(G11) (#mean-point)) turned onto
+    # the pitch line, |M| = R_m
     assert np.linalg.norm(mc.point) == pytest.approx(blank.Rm, abs=1e-9)
     assert np.linalg.norm(np.cross(mc.point, kin.pitch_line)) < 1e-9
-    # equation of meshing of the pair (velocity form, ERRATA §2.2) and the gear point/normal mapping
+    # equation of meshing of the pair (velocity form, docs/theory/gearing.md, Eqs. (M1)-(M8)) and the gear point/normal
+    # mapping
     assert abs(kin.meshing_velocity_form(mc.point, mc.normal)) < 1e-10
     R = kin.gear_to_fixed(mc.phi2)
     np.testing.assert_allclose(R @ mc.gear_point, mc.point, atol=1e-12)

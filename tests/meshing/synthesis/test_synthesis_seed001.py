@@ -1,4 +1,5 @@
-"""Acceptance of the local synthesis on seed 001 (Tables 1, 2, 4; ERRATA §1.2): the synthesized pinion is generated
+"""Acceptance of the local synthesis on seed 001 (Tables 1, 2, 4; docs/theory/example.md): the synthesized pinion is
+generated
 and checked against the design by (a) the generation package's curvature transfer, (b) numerical differential
 geometry of the generated map, and (c) an independent point-contact solve of the two generated flanks (TE, path
 direction, contact ellipse)."""
@@ -133,7 +134,8 @@ def test_iv_contact_ellipse_semi_major_axis(contact):
 
 
 def test_cutter_against_seed001_table5(synth_pos, synth_roll):
-    """seed 001 Table 5 (ERRATA §1.2): R_h1 = 124.879 mm, modified blade angle 21 deg 10'. With eta = +6 deg in our
+    """seed 001 Table 5 (docs/theory/example.md): R_h1 = 124.879 mm, modified blade angle 21 deg 10'. With eta = +6 deg
+    in our
     convention the synthesized cutter agrees (measured: offset set 124.19 mm / 21.37 deg, modified-roll set
     124.75 mm / 21.01 deg); with eta = -6 deg it does not (126.6 mm / 19.7 deg), which supports the sign. The machine
     settings differ (Table 5: S_r1 = 91.116 mm, q1 = 56 deg 58' 56", m_1c = 2.499 with E_m1 = 34.197 mm; ours keep

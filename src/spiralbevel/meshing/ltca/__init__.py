@@ -1,4 +1,4 @@
-"""Loaded tooth contact analysis (seed 001 §4.3.2, Eq. (18); ERRATA §1.1 "LTCA (18)").
+"""Loaded tooth contact analysis (seed 001 §4.3.2, Eq. (18); docs/theory/ltca.md, Eqs. (L1)-(L4)).
 
 Building blocks: exact load-distribution solver (:mod:`.lcp`), half-space contact flattening (:mod:`.halfspace`),
 FE tooth compliance (:mod:`.mesher`, :mod:`.compliance`; extra ``fem``), separations (:mod:`.separation`) and the

@@ -88,7 +88,8 @@ class ToothCompliance:
         return (W, inside) if return_inside else W
 
     def weight_matrix(self, teeth, points):
-        """Weights (n, m) of member-frame points on the given teeth (one tooth index per point) and the on-flank mask."""
+        """Weights (n, m) of member-frame points on the given teeth (one tooth index per point) and the on-flank
+        mask."""
         teeth = np.asarray(teeth).ravel()
         pts = np.asarray(points, float).reshape(-1, 3)
         W = np.zeros((len(pts), self.G.shape[0]))

@@ -19,7 +19,8 @@ For every mesh position i and tooth pair k of the TCA (pinion tooth k against ge
   gear tooth k is turned by -2 pi k/z2).
 
 The LTCA driver then adds w_i = w_sep - te_k h_i with the lever arms h_i = ((q_i - o2) x n) . a2 (seed 001 Eq. (18),
-ERRATA §1.1 "LTCA (18)"). Potential contact points whose foot lies off a loaded flank grid are dropped, so edge
+docs/theory/ltca.md, Eqs. (L1)-(L4)). Potential contact points whose foot lies off a loaded flank grid are dropped, so
+edge
 contact of the TCA (extended surfaces) becomes contact along the flank edge.
 """
 
@@ -28,7 +29,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 from dataclasses import dataclass
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 
@@ -95,7 +96,7 @@ def segment_compliance(convex, concave, z: int, side: str, *, material: Material
     MissingDependencyError
         scikit-fem is missing and the result is not cached.
     """
-    opts = dict(FE_DEFAULTS)
+    opts: dict[str, Any] = dict(FE_DEFAULTS)
     for key, v in (fe_options or {}).items():
         if key not in opts:
             raise DesignError.single(f"fe_options[{key!r}]", v, f"one of {sorted(opts)}", "-", "FE tooth compliance")
@@ -373,7 +374,7 @@ def ltca_model(pinion_surface, gear_surface, kinematics, tca_result, *, pinion_g
                                             half_width=half_width)
     prob = ContactProblem(pinion_surface, gear_surface, kinematics, misalignment)
     a1, o1, a2, o2, _ = prob.axes
-    comps = [None, None]
+    comps: list[Any] = [None, None]
     if not rigid:
         j0 = int(np.argmin(np.abs(np.asarray(tca_result.pairs))))
         m0 = len(tca_result.phi1) // 2

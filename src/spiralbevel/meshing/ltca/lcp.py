@@ -1,4 +1,5 @@
-"""Load distribution at one mesh position: the complementarity problem of seed 001 Eq. (18), ERRATA §1.1 "LTCA (18)".
+"""Load distribution at one mesh position: the complementarity problem of seed 001 Eq. (18), docs/theory/ltca.md, Eqs.
+(L1)-(L4).
 
     C F + w - d = dtheta h,   sum_i F_i h_i = T,   F >= 0,  d >= 0,  F_i d_i = 0
 

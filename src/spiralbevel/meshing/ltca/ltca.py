@@ -5,7 +5,8 @@ unloaded contact point and common normal in the pair frame, the major-axis direc
 pair's unloaded transmission error, the relative curvature (or an exact separation function), and the poses that map
 pair-frame points to the member frames of pinion and gear (reference tooth) with the FE tooth index of the pair.
 
-Per position (seed 001 Eq. (18), ERRATA §1.1 "LTCA (18)"): potential contact points on a regular grid of the common
+Per position (seed 001 Eq. (18), docs/theory/ltca.md, Eqs. (L1)-(L4)): potential contact points on a regular grid of the
+common
 tangent plane of each pair; lever arms h_i = ((q_i - o2) x n) . a2 about the gear axis; initial separations
 w_i = w_sep(s, t) - te_pair h_i, so the gear lag dtheta that closes pair k first is -te_k and the loaded transmission
 error is -dtheta; flexibility C = C_FE,pinion + C_FE,gear + C_halfspace (the last within each pair only, its cells
@@ -32,7 +33,7 @@ __all__ = ["PairContact", "ContactPosition", "run_ltca", "torque_for_approach", 
 
 log = logging.getLogger(__name__)
 
-APPROACH_TARGET = 0.00635  # mm, Gleason's 0.00025 in rule (seed 001 §4.3.2, ERRATA §1.1)
+APPROACH_TARGET = 0.00635  # mm, Gleason's 0.00025 in rule (seed 001 §4.3.2, docs/theory/ltca.md, Eq. (L6))
 
 
 @dataclass(frozen=True)
@@ -264,7 +265,8 @@ def run_ltca(positions: Sequence[ContactPosition], torque: float, pinion_complia
              grid=(21, 7), half_length=8.0, half_width=0.8, material_pinion: Material = STEEL,
              material_gear: Material = STEEL, mean_position: int | None = None,
              approach_target: float | None = APPROACH_TARGET) -> LTCAResult:
-    """Loaded tooth contact analysis over mesh positions (seed 001 §4.3.2, Eq. (18); ERRATA §1.1 "LTCA (18)").
+    """Loaded tooth contact analysis over mesh positions (seed 001 §4.3.2, Eq. (18); docs/theory/ltca.md, Eqs.
+    (L1)-(L4)).
 
     Parameters
     ----------
@@ -306,7 +308,8 @@ def run_ltca(positions: Sequence[ContactPosition], torque: float, pinion_complia
     n_pairs = max(len(p.pairs) for p in positions)
     ns, nt = grid
     cell_state = np.zeros(n_pairs * ns * nt, bool)
-    out = {k: [] for k in ("dtheta", "dtheta0", "share", "pf", "pmax", "pts", "pair", "F", "p", "x1", "x2", "te")}
+    out: dict[str, list] = {
+        k: [] for k in ("dtheta", "dtheta0", "share", "pf", "pmax", "pts", "pair", "F", "p", "x1", "x2", "te")}
     for k, pos in enumerate(positions):
         sysk = _assemble(k, pos, pinion_compliance, gear_compliance, a2, o2, grid, half_length, half_width, estar)
         warm = cell_state[sysk.flat]

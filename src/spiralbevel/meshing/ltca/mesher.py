@@ -118,14 +118,16 @@ def mesh_tooth_segment(convex, concave, z, n_teeth=3, thickness_divisions=2, spa
             raise DesignError.single(name, v, f"integer >= {lo}", "-", "tooth segment mesh")
     nf, npf = cv.shape[:2]
     pitch = 2 * np.pi / z
-    ang = lambda g: np.angle(np.mean(np.exp(1j * np.arctan2(g[..., 1], g[..., 0]))))
-    lo_side, hi_side = ("convex", "concave") if np.angle(np.exp(1j * (ang(cc) - ang(cv)))) > 0 else ("concave", "convex")
+    def ang(g):
+        return np.angle(np.mean(np.exp(1j * np.arctan2(g[..., 1], g[..., 0]))))
+    turn = np.angle(np.exp(1j * (ang(cc) - ang(cv))))
+    lo_side, hi_side = ("convex", "concave") if turn > 0 else ("concave", "convex")
     low, high = (cv, cc) if lo_side == "convex" else (cc, cv)
     ks = list(range(-((n_teeth - 1) // 2), n_teeth // 2 + 1))
     nt, ns, nr = thickness_divisions, space_divisions, rim_layers
     tau_t = np.linspace(0, 1, nt + 1)
     # angular columns: (tooth id or -1, column points at every profile level or root only)
-    cols_root, tooth_of_col, col_side = [], [], []
+    cols_root, tooth_of_col = [], []
     tooth_cols = {}
     for m, k in enumerate(ks):
         L, H = _rotz(low, k * pitch), _rotz(high, k * pitch)
@@ -142,11 +144,11 @@ def mesh_tooth_segment(convex, concave, z, n_teeth=3, thickness_divisions=2, spa
         tooth_cols[k] = (first, L, H)
     Na = len(cols_root)
     root = np.stack(cols_root, axis=1)  # (nf, Na, 3)
-    tooth_of_col = np.array(tooth_of_col)
+    col_tooth = np.array(tooth_of_col)
     nV = nr + npf
     X = np.full((nf, Na, nV, 3), np.nan)
     X[:, :, nr] = root
-    for k, (first, L, H) in tooth_cols.items():
+    for first, L, H in tooth_cols.values():
         for c, tau in enumerate(tau_t):
             X[:, first + c, nr:] = (1 - tau) * L + tau * H
     if nr > 0:
@@ -172,8 +174,8 @@ def mesh_tooth_segment(convex, concave, z, n_teeth=3, thickness_divisions=2, spa
         fixed[:] = False
         fixed[idx[:, :, 0][idx[:, :, 0] >= 0]] = True
     # hexahedra
-    same_tooth = (tooth_of_col[:-1] == tooth_of_col[1:]) & (tooth_of_col[:-1] >= 0)
-    corners = {}
+    same_tooth = (col_tooth[:-1] == col_tooth[1:]) & (col_tooth[:-1] >= 0)
+    corners: dict[tuple[int, ...], np.ndarray] = {}
     for di in (0, 1):
         for da in (0, 1):
             for dv in (0, 1):
@@ -181,15 +183,15 @@ def mesh_tooth_segment(convex, concave, z, n_teeth=3, thickness_divisions=2, spa
     ok = np.all([c >= 0 for c in corners.values()], axis=0)
     level = np.arange(nV - 1)[None, None, :]
     ok &= (level < nr) | same_tooth[None, :, None]
-    tets = []
+    blocks = []
     for perm in permutations(range(3)):
-        path = [(0, 0, 0)]
+        path: list[tuple[int, ...]] = [(0, 0, 0)]
         for ax in perm:
             nxt = list(path[-1])
             nxt[ax] = 1
             path.append(tuple(nxt))
-        tets.append(np.stack([corners[c][ok] for c in path], axis=1))
-    tets = np.concatenate(tets, axis=0)
+        blocks.append(np.stack([corners[c][ok] for c in path], axis=1))
+    tets = np.concatenate(blocks, axis=0)
     P = verts[tets]
     vol = np.einsum("ij,ij->i", np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]), P[:, 3] - P[:, 0])
     if np.any(np.abs(vol) < 1e-12 * np.abs(vol).max()):

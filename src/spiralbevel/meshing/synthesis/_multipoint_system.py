@@ -1,9 +1,11 @@
-"""The batched contact system of multi-point control (seed 001 Eqs. (16)-(17), ERRATA §1.1), one per control point.
+"""The batched contact system of multi-point control (seed 001 Eqs. (16)-(17), docs/theory/tca.md, Eqs. (T5), (T8)), one
+per control point.
 
 Unknowns y = (u1, psi_c1, u2, psi_c2, phi2, E_m1): the blade parameters and cradle angles of the contact point on the
 pinion and on the gear, the gear rotation and the pinion's instantaneous blank offset (mm, user sign of
 ``MachineSettings.blank_offset``). The cutter angles theta_1, theta_2 are eliminated in closed form by the equations of
-meshing of generation f_1 = f_2 = 0 (``_core.generation.solve_contact``), so the 8 x 8 system of ERRATA §1.1 becomes
+meshing of generation f_1 = f_2 = 0 (``_core.generation.solve_contact``), so the 8 x 8 system of docs/theory/tca.md,
+Eqs. (T5), (T8) becomes
 6 x 6 here:
 
     R(a1, phi1) r1(u1, psi_c1; E_m1, E_m1') - R(a2, phi2) R_y(S) r2(u2, psi_c2) = 0      (3, mm)
@@ -13,7 +15,8 @@ meshing of generation f_1 = f_2 = 0 (``_core.generation.solve_contact``), so the
 with TE = D [-(phi2 - phi20) - (z1/z2)(phi1 - phi10)] (docs/conventions.md), t_a, t_b two fixed unit vectors across the
 mean normal and L a length (|M|) that turns the normal and TE equations into mm. The pinion point at psi_c1 depends on
 the blank offset only through its value E_m1 and its rate E_m1' = dE_m1/dpsi_c at that instant (the rate enters the
-relative velocity of generation, ERRATA §1.1 Eq. (15)); the rate is given per system (frozen during one solve). For
+relative velocity of generation, docs/theory/generation.md, Eqs. (G5)-(G6)); the rate is given per system (frozen during
+one solve). For
 the mean contact point the last equation is L (E_m1 - E_m10) = 0 instead: it fixes the offset and defines phi20.
 """
 

@@ -98,14 +98,14 @@ def relative_curvature_from_path(n, t_path, v12, b, c, lam_min):
     return K, v_r2, v_r1, ""
 
 
-def tangent_components(p, n, K, axis=np.array([0.0, 0.0, 1.0])):
+def tangent_components(p, n, K, axis=(0.0, 0.0, 1.0)):
     """Rotation-invariant description of a surface point about ``axis`` (through the origin).
 
     Returns (..., 7): axial position, radius, normal components along the axis and along the radial unit vector,
     and the tangent-plane tensor components K_aa, K_ab, K_bb in the basis t_a = unit(axis - (axis.n) n), t_b = n x t_a.
     The 8th value, returned separately, is the tangential normal component (its sign picks the branch).
     """
-    p, n, K = (np.asarray(x, float) for x in (p, n, K))
+    p, n, K, axis = (np.asarray(x, float) for x in (p, n, K, axis))
     ax = p @ axis
     radial = p - ax[..., None] * axis
     rad = np.linalg.norm(radial, axis=-1)

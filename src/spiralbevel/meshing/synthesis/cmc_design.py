@@ -9,7 +9,7 @@ lies on the active flanks of both members (``active_range``), and runs TCA of th
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -60,9 +60,9 @@ def active_range(synthesis, step: float | None = None) -> tuple[float, float]:
 class CMCDesign(NamedTuple):
     """Result of :func:`design_seed001_style`: unpacks as (synthesis, multipoint, tca)."""
 
-    synthesis: object
-    multipoint: object
-    tca: object
+    synthesis: Any
+    multipoint: Any
+    tca: Any
 
     def summary(self) -> dict:
         """Report section: settings (deg/mm), CMC, blank-offset law, TCA (arcsec)."""

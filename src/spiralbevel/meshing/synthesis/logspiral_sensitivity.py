@@ -139,11 +139,11 @@ def first_touch_te(pinion, gear, kinematics, phi1, *, phi1_mean, phi2_mean, driv
             ph2 = phi2_mean - ratio * (pe - phi1_mean)
             R1 = rot_z(pe)
 
-            def solve_pinion(q):                  # pinion points q onto the gear flank
+            def solve_pinion(q, R1=R1, ph2=ph2):                  # pinion points q onto the gear flank
                 P = o1 + pinion.evaluate(q)[0] @ R1.T
                 return _pinion_nodes(P, gear, q2, tree2, a2, o2, B2, ph2)
 
-            def solve_gear(q):                    # gear points q onto the pinion flank
+            def solve_gear(q, R1=R1, ph2=ph2):                    # gear points q onto the pinion flank
                 return _gear_nodes(gear.evaluate(q)[0], pinion, q1, tree1, R1, o1, a2, o2, B2, ph2)
 
             for solve, q, h, surf in ((solve_pinion, q1, h1, pinion), (solve_gear, q2, h2, gear)):

@@ -1,7 +1,8 @@
 """Pinion machine settings that generate prescribed first- and second-order geometry at one point.
 
 The generated pinion flank (``spiralbevel.generation``) is a black box (u, psi_c) -> point, outward normal, principal
-curvatures (curvature transfer, ERRATA §3.3). The mean point is generated at the cradle angle psi_c = 0 (a gauge: the
+curvatures (curvature transfer, docs/theory/generation.md, Eqs. (G13)-(G15) (#curvature-transfer)). The mean point is
+generated at the cradle angle psi_c = 0 (a gauge: the
 cradle angle q then places the cutter). Seven conditions, all invariant under rotation about the pinion axis (the
 pinion's rotation phi10 in the pair is free): axial position and radius of the point (2), axial and radial components
 of the unit normal (2), and the three components of the curvature tensor in the tangent basis of

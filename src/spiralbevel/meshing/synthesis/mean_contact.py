@@ -1,8 +1,10 @@
 """The mean contact point of a bevel pair: the gear's reference point placed in the pair frame.
 
-The gear's mean point (seed 003 reference point, ERRATA §3.1 step 7: cone distance R_m, ``depth`` below the pitch
+The gear's mean point (seed 003 reference point, docs/theory/generation.md, Eqs. (G10)-(G11) (#mean-point): cone
+distance R_m, ``depth`` below the pitch
 line; ``ToothFlank.mean_point``) is turned about the gear axis until the common normal passes through the pitch line
-(Willis, ERRATA §2.2: det[r, n, p] = 0). For depth 0 the point then lies on the pitch line itself, where the pitch
+(Willis, docs/theory/gearing.md, Eq. (M4): det[r, n, p] = 0). For depth 0 the point then lies on the pitch line itself,
+where the pitch
 cones of both members touch. The pinion must pass through this point with the opposite outward normal; because the
 pinion's own rotation phi10 is free, only quantities invariant under rotation about the pinion axis are prescribed:
 axial position, radius and the cylindrical components of the normal (docs/conventions.md, gear-pair frame).

@@ -1,18 +1,21 @@
-"""Extended local synthesis with multi-point control (seed 001 §4.3.1, Eqs. (16)-(17) as decoded in ERRATA §1.1).
+"""Extended local synthesis with multi-point control (seed 001 §4.3.1, Eqs. (16)-(17) as decoded in docs/theory/tca.md,
+Eqs. (T5), (T8)).
 
 The pinion of a local synthesis (:func:`~spiralbevel.meshing.synthesis.synthesize_pinion`) meets the gear at the mean
 contact point M with a parabolic TE. Multi-point control makes the TE follow a predesigned motion curve, e.g. the
 combined motion curve (CMC) of seed 001 §2.2, at chosen pinion rotations (the control points), by giving the pinion's
 blank offset E_m1 a different value at every cradle angle:
 
-1. at each control point x_k = phi1 - phi10, solve the 8 x 8 system of ERRATA §1.1 — contact of the pinion generated
+1. at each control point x_k = phi1 - phi10, solve the 8 x 8 system of docs/theory/tca.md, Eqs. (T5), (T8) — contact of
+   the pinion generated
    with the instantaneous offset E_m1 and the gear (coincident points, collinear normals, both equations of meshing of
    generation) plus the CMC condition Delta phi2(x_k) = CMC(x_k) - CMC(0) of Eq. (17) with an absolute tolerance — for
    E_m1 and the contact parameters (``_multipoint_system``: theta_1, theta_2 in closed form, a 6 x 6 system, all
    control points in one batched Newton solve, started by continuation from M);
 2. the cradle angle psi_c1 at which each control-point contact is generated is the node of the law E_m1(psi_c1);
    between nodes the law is linear (seed 001 §4.3.1 step 3) or the interpolating polynomial (``OffsetLaw``);
-3. the pinion generated with a variable offset has dE_m1/dt in its relative velocity (ERRATA §1.1 Eq. (15)), which
+3. the pinion generated with a variable offset has dE_m1/dt in its relative velocity (docs/theory/generation.md, Eqs.
+   (G5)-(G6)), which
    moves the generated point along the cutter: the rate at every node is taken from the law itself and steps 1-2 are
    repeated until the nodes stop moving (fixed point), so the pinion generated with the final law passes the control
    points exactly;
@@ -30,6 +33,7 @@ import numbers
 import time
 from dataclasses import dataclass
 from types import SimpleNamespace
+from typing import Any
 
 import numpy as np
 
@@ -94,7 +98,7 @@ class MultiPointResult:
     elapsed : float, s
     """
 
-    synthesis: object
+    synthesis: Any
     cmc: object
     control_points: np.ndarray
     mean_index: int
@@ -250,7 +254,7 @@ def multipoint_control(synthesis, cmc, control_points, *, tol_abs: float = 1e-9,
     control_points : (k,) float, rad
         Pinion rotations from phi10 at which the TE is controlled; 0 (the mean point) is added when absent.
     tol_abs : float, rad
-        Absolute tolerance of Eq. (17), |Delta phi2^t - Delta phi2| < tol_abs (ERRATA §1.1, §1.3 item 6), checked on
+        Absolute tolerance of Eq. (17), |Delta phi2^t - Delta phi2| < tol_abs (docs/theory/tca.md, Eq. (T8)), checked on
         the regenerated flank.
     interpolation : {"linear", "spline", "polynomial"}
         Law between the nodes: piecewise linear (seed 001 §4.3.1 step 3), natural cubic spline, or the interpolating
@@ -294,7 +298,7 @@ def multipoint_control(synthesis, cmc, control_points, *, tol_abs: float = 1e-9,
     y = _continuation(system, x, target_fn, step if step is not None else math.pi / (4 * z1))
     base = system.offset0
     # ---- fixed point on the offset rates (step 3): the contact at node k is generated with E'(psi_k) of the law
-    for it in range(1, max_outer + 1):
+    for it in range(1, max_outer + 1):  # noqa: B007 - it is reported after the loop
         law = _law(interpolation, y, base)
         res = system.solve(y, x, target, law.rate(y[:, 1]), y[i0, 4], mean)
         if not np.all(res.converged):
