@@ -18,8 +18,8 @@ Reported (and the exit status is 1 unless all are 0):
 - exit codes outside the documented set {0, 1, 2, 3};
 - touched: a file or directory of the sandbox outside the command's output (the OUT of ``run``, the ``--output``
   file) and the cache (``$SPIRALBEVEL_CACHE``, and matplotlib's font cache ``$MPLCONFIGDIR`` in it) that was created,
-  changed or deleted (the sandbox holds decoy files: a user's project directory, a FIFO, a link and its target), and any new
-  entry in the system temporary directory.
+  changed or deleted (the sandbox holds decoy files: a user's project directory, a FIFO, a link and its target), and
+  any new entry in the system temporary directory.
 """
 
 from __future__ import annotations

@@ -31,8 +31,11 @@ values = st.one_of(
 )
 
 
+_DESIGN_NAMES = tuple(sorted(DESIGNS))
+
+
 @st.composite
-def design_files(draw, names=tuple(sorted(DESIGNS))):
+def design_files(draw, names=_DESIGN_NAMES):
     name = draw(st.sampled_from(names))
     lines = DESIGNS[name].splitlines()
     keyed = [i for i, ln in enumerate(lines) if "=" in ln and not ln.lstrip().startswith("#")]
@@ -124,7 +127,8 @@ sweep_values = st.one_of(
 @BOUNDED
 @given(opts=st.dictionaries(st.sampled_from(["--pinion-axial", "--gear-axial", "--offset", "--shaft-angle"]),
                             sweep_values, max_size=3),
-       scheduler=st.one_of(st.text(max_size=30).filter(lambda s: "://" not in s), st.sampled_from(["bogus", "tcp://h", "tcp://h:0", "ws://:1"])))
+       scheduler=st.one_of(st.text(max_size=30).filter(lambda s: "://" not in s),
+                           st.sampled_from(["bogus", "tcp://h", "tcp://h:0", "ws://:1"])))
 def test_generated_sweep_arguments(opts, scheduler):
     # no generated scheduler is a valid address (no "://" in random text; the samples are malformed), so nothing
     # connects anywhere: the arguments are checked and refused before any TCA

@@ -119,7 +119,7 @@ def test_foreign_directory_refused_and_previous_output_replaced(tmp_path):
     out.mkdir()
     (out / "mine.txt").write_text("user data")
     with pytest.raises(ForeignDirectoryError):
-        with atomic_directory(out, marker=OUTPUT_MARKER) as tmp:
+        with atomic_directory(out, marker=OUTPUT_MARKER):
             pytest.fail("the body must not run")
     assert [p.name for p in out.iterdir()] == ["mine.txt"]
     empty = tmp_path / "empty"

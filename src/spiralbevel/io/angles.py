@@ -83,10 +83,10 @@ def _scan_dms(text: str, original: str) -> float:
             i += 1
     if count == 0:
         raise _bad(original)
-    d, m, s = values
-    if m >= 60 or s >= 60:
+    deg, mins, secs = values
+    if mins >= 60 or secs >= 60:
         raise _bad(original, "minutes and seconds must be below 60")
-    return sign * (d + m / 60.0 + s / 3600.0)
+    return sign * (deg + mins / 60.0 + secs / 3600.0)
 
 
 def parse_angle_deg(value) -> float:

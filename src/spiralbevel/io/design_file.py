@@ -162,7 +162,9 @@ def parse_design(text: str, source: str = "<string>") -> DesignFile:
     try:
         return DesignFile.model_validate(data)
     except ValidationError as err:
-        problems, seen, dropped = [], set(), 0
+        problems: list[Problem] = []
+        seen: set[str] = set()
+        dropped = 0
         for e in err.errors():
             p = _problem(e)
             if p.field in seen:          # a union (e.g. 'approach' or a number) reports once per member
