@@ -119,13 +119,25 @@ def test_poses_put_each_pair_on_its_fe_tooth(setup, model):
 
 
 def test_points_on_reference_teeth(setup, model):
-    """LTCAResult.points1 are on the reference pinion flank (member frame) whatever the pair."""
+    """LTCAResult.points1 / points2 are on the reference pinion / gear flank (member frames) whatever the pair: pair
+    k sits on pinion tooth k and gear tooth -k, each turned back by its own tooth's angle. Both members are checked
+    (on the grid, and within 0.2 mm of it: the pinion crowning and the chord error of the 9 x 6 grids, see above),
+    with pairs k != 0 among the loaded ones (the gear pitch, 5.5 deg, puts a wrongly turned point 2 pitches away)."""
     res = model.run(2e4, approach_target=None)
-    ref = model.pinion_compliance.grids[0]
-    for pts, F in zip(res.points1, res.force):
-        loaded = pts[F > 0]
-        _, _, _, _, inside = locate_on_grid(ref, loaded)
-        assert inside.all()
+    ks = np.asarray(model.pairs)
+    seen = set()
+    for comp, points in ((model.pinion_compliance, res.points1), (model.gear_compliance, res.points2)):
+        ref = comp.grids[0]
+        for pts, F, pr in zip(points, res.force, res.pair_of_point):
+            loaded = pts[F > 0]
+            seen |= {int(k) for k in ks[pr[F > 0]]}
+            i, j, xi, eta, inside = locate_on_grid(ref, loaded)
+            x, e = xi[:, None], eta[:, None]
+            foot = ((1 - x) * (1 - e) * ref[i, j] + x * (1 - e) * ref[i + 1, j] + (1 - x) * e * ref[i, j + 1]
+                    + x * e * ref[i + 1, j + 1])
+            assert inside.all()
+            assert np.max(np.linalg.norm(foot - loaded, axis=1)) < 0.2
+    assert seen - {0}, "no loaded pair k != 0: the test would not see a wrong turn"
 
 
 def test_loaded_te_and_contact_width_grow_with_torque(model):

@@ -325,8 +325,10 @@ class LTCAModel:
         p1, p2 = [], []
         for x1, x2, pr in zip(res.points1, res.points2, res.pair_of_point):
             k = ks[pr]
+            # pair k sits on pinion tooth k (2 pi k / z1 ahead of the reference tooth) and on gear tooth -k
+            # (PairContact.tooth_gear): turn each back by its own tooth's angle
             p1.append(np.einsum("mij,mj->mi", rot_z(-2 * np.pi * k / self.z1), x1))
-            p2.append(np.einsum("mij,mj->mi", rot_z(-2 * np.pi * k / self.z2), x2))
+            p2.append(np.einsum("mij,mj->mi", rot_z(2 * np.pi * k / self.z2), x2))
         names = tuple(f"pair {int(k):+d}" for k in ks)
         return dataclasses.replace(res, points1=p1, points2=p2, pair_names=names)
 

@@ -1,4 +1,4 @@
-"""Location of points on a structured surface grid: cell indices and bilinear coordinates (Gauss-Newton)."""
+"""Location of points on a structured surface grid: cell indices and bilinear coordinates (projected Newton)."""
 
 from __future__ import annotations
 
@@ -6,68 +6,118 @@ import numpy as np
 
 __all__ = ["locate_on_grid"]
 
+#: stationarity tolerance (mm): the tangential part of the point-to-foot vector along each cell coordinate direction
+#: at a converged foot (round-off of grid coordinates of ~100 mm is ~1e-13 mm)
+FOOT_TOL = 1e-9
 
-def _bilinear(grid, i, j, xi, eta):
+
+def _patch(grid, i, j, xi, eta):
     p00, p10 = grid[i, j], grid[i + 1, j]
     p01, p11 = grid[i, j + 1], grid[i + 1, j + 1]
     x, e = xi[:, None], eta[:, None]
     r = (1 - x) * (1 - e) * p00 + x * (1 - e) * p10 + (1 - x) * e * p01 + x * e * p11
     ru = (1 - e) * (p10 - p00) + e * (p11 - p01)
     rv = (1 - x) * (p01 - p00) + x * (p11 - p10)
-    return r, ru, rv
+    ruv = p11 - p10 - p01 + p00
+    return r, ru, rv, ruv
 
 
-def locate_on_grid(grid, points, sweeps=4, iterations=6):
+def _dot(a, b):
+    return np.einsum("ni,ni->n", a, b)
+
+
+def locate_on_grid(grid, points, iterations=200):
     """Cell (i, j) and bilinear coordinates (xi, eta) in [0, 1] of the foot points of ``points`` on ``grid``.
 
     Parameters
     ----------
     grid : (n0, n1, 3) float, mm
-        Structured surface grid.
+        Structured surface grid (bilinear cells).
     points : (n, 3) float, mm
-        Points on or near the surface; points beyond the grid edge are clamped to it.
+        Points on or near the surface; points beyond the grid edge get the nearest point of the edge.
+    iterations : int
+        Newton steps at most (cell changes included).
 
     Returns
     -------
     i, j : (n,) int
         Cell indices (0 <= i <= n0 - 2, 0 <= j <= n1 - 2).
     xi, eta : (n,) float
-        Bilinear coordinates in the cell, clamped to [0, 1].
+        Bilinear coordinates in the cell, in [0, 1].
     inside : (n,) bool
-        False for points whose foot lies beyond the grid edge (before clamping).
+        True only where the foot converged (the point-to-foot vector normal to the grid surface to ``FOOT_TOL`` mm,
+        or on a cell edge shared by two cells with the distance growing into both) and lies on the grid, not beyond
+        its edge. A point whose iteration did not converge is never inside.
 
     Notes
     -----
-    Start at the cell of the nearest grid node, then Gauss-Newton on the bilinear patch for the closest point;
-    when a coordinate leaves [0, 1] the point moves to the neighbouring cell (``sweeps`` times).
+    Start at the grid node nearest to the point; then Newton steps on the squared distance to the bilinear patch of
+    the current cell (exact Hessian, Gauss-Newton where that is not positive definite), each at most one cell long
+    and projected onto the cell. A coordinate at a cell edge whose gradient points out of the cell is held there
+    while the other one slides along the edge; once that stalls, the point moves on to the neighbouring cell (its
+    coordinate continued across the edge), except at the grid's outer edge, where the foot stays (not inside).
     """
     grid = np.asarray(grid, float)
     pts = np.asarray(points, float).reshape(-1, 3)
     n0, n1 = grid.shape[:2]
-    d2 = np.sum((pts[:, None, :] - grid.reshape(1, -1, 3)) ** 2, axis=-1)
-    near = np.argmin(d2, axis=1)
-    i = np.clip(near // n1, 0, n0 - 2)
-    j = np.clip(near % n1, 0, n1 - 2)
-    xi = np.full(len(pts), 0.5)
-    eta = np.full(len(pts), 0.5)
-    for _ in range(sweeps):
-        for _ in range(iterations):
-            r, ru, rv = _bilinear(grid, i, j, xi, eta)
-            res = r - pts
-            a11, a12, a22 = (ru * ru).sum(1), (ru * rv).sum(1), (rv * rv).sum(1)
-            b1, b2 = -(ru * res).sum(1), -(rv * res).sum(1)
-            det = a11 * a22 - a12**2
-            xi = xi + (a22 * b1 - a12 * b2) / det
-            eta = eta + (a11 * b2 - a12 * b1) / det
-        di = np.where(xi < 0, -1, np.where(xi > 1, 1, 0))
-        dj = np.where(eta < 0, -1, np.where(eta > 1, 1, 0))
-        ni, nj = np.clip(i + di, 0, n0 - 2), np.clip(j + dj, 0, n1 - 2)
-        moved = (ni != i) | (nj != j)
-        if not moved.any():
+    npt = len(pts)
+    nodes = grid.reshape(-1, 3)
+    d2 = np.sum(nodes**2, axis=1)[None, :] - 2.0 * pts @ nodes.T  # + |p|^2, the same for every node
+    near = np.argmin(d2, axis=1) if npt else np.zeros(0, int)
+    a, b = near // n1, near % n1
+    i, j = np.minimum(a, n0 - 2), np.minimum(b, n1 - 2)
+    xi, eta = (a - i).astype(float), (b - j).astype(float)
+    done = np.zeros(npt, bool)
+    for _ in range(iterations):
+        act = np.flatnonzero(~done)
+        if act.size == 0:
             break
-        xi = np.where(moved, 0.5, xi)
-        eta = np.where(moved, 0.5, eta)
-        i, j = ni, nj
-    tol = 1e-6
-    inside = (xi > -tol) & (xi < 1 + tol) & (eta > -tol) & (eta < 1 + tol)
-    return i, j, np.clip(xi, 0.0, 1.0), np.clip(eta, 0.0, 1.0), inside
+        ia, ja, x, e, p = i[act], j[act], xi[act], eta[act], pts[act]
+        r, ru, rv, ruv = _patch(grid, ia, ja, x, e)
+        res = r - p
+        g1, g2 = _dot(ru, res), _dot(rv, res)
+        # a coordinate at a cell edge with the gradient pointing out of the cell is held there; the other one slides
+        out_lo1, out_hi1 = (x <= 0) & (g1 > 0), (x >= 1) & (g1 < 0)
+        out_lo2, out_hi2 = (e <= 0) & (g2 > 0), (e >= 1) & (g2 < 0)
+        fix1, fix2 = out_lo1 | out_hi1, out_lo2 | out_hi2
+        a11, a22, a12 = _dot(ru, ru), _dot(rv, rv), _dot(ru, rv)
+        h12 = a12 + _dot(res, ruv)
+        det = a11 * a22 - h12**2
+        h12 = np.where(det > 1e-12 * a11 * a22, h12, a12)  # not positive definite: Gauss-Newton
+        det = a11 * a22 - h12**2
+        d1 = -(a22 * g1 - h12 * g2) / det
+        d2 = -(a11 * g2 - h12 * g1) / det
+        d1 = np.where(fix2, -g1 / a11, d1)
+        d2 = np.where(fix1, -g2 / a22, d2)
+        d1 = np.where(fix1, 0.0, d1)
+        d2 = np.where(fix2, 0.0, d2)
+        scale = np.minimum(1.0, 1.0 / np.maximum(np.maximum(np.abs(d1), np.abs(d2)), 1e-300))  # damping: <= 1 cell
+        x_new = np.clip(x + d1 * scale, 0.0, 1.0)
+        e_new = np.clip(e + d2 * scale, 0.0, 1.0)
+        stalled = np.maximum(np.abs(x_new - x), np.abs(e_new - e)) < 1e-13
+        # stalled at the best point of a cell edge that the gradient points across: on to the neighbouring cell
+        # (coordinate continued across the edge); at the grid's outer edge the foot stays there
+        mv1 = stalled & ((out_lo1 & (ia > 0)) | (out_hi1 & (ia < n0 - 2)))
+        mv2 = stalled & ((out_lo2 & (ja > 0)) | (out_hi2 & (ja < n1 - 2)))
+        i[act] = ia + np.where(mv1, np.where(out_lo1, -1, 1), 0)
+        j[act] = ja + np.where(mv2, np.where(out_lo2, -1, 1), 0)
+        xi[act] = np.where(mv1, np.where(out_lo1, 1.0, 0.0), x_new)
+        eta[act] = np.where(mv2, np.where(out_lo2, 1.0, 0.0), e_new)
+        done[act] = stalled & ~mv1 & ~mv2
+    # Karush-Kuhn-Tucker check of the foot in its cell (never trust an unconverged iterate)
+    r, ru, rv, _ = _patch(grid, i, j, xi, eta)
+    res = r - pts
+    t1 = _dot(ru, res) / np.linalg.norm(ru, axis=1)
+    t2 = _dot(rv, res) / np.linalg.norm(rv, axis=1)
+    lo1, hi1, lo2, hi2 = xi <= 0, xi >= 1, eta <= 0, eta >= 1
+
+    def coord_ok(t, lo, hi, first, last):
+        interior = ~lo & ~hi & (np.abs(t) <= FOOT_TOL)
+        at_lo = lo & ((t <= FOOT_TOL) | first)   # wanting out only where there is no neighbour (grid edge)
+        at_hi = hi & ((t >= -FOOT_TOL) | last)
+        return interior | at_lo | at_hi
+
+    ok = coord_ok(t1, lo1, hi1, i == 0, i == n0 - 2) & coord_ok(t2, lo2, hi2, j == 0, j == n1 - 2)
+    beyond = (lo1 & (t1 > FOOT_TOL)) | (hi1 & (t1 < -FOOT_TOL)) | (lo2 & (t2 > FOOT_TOL)) | (hi2 & (t2 < -FOOT_TOL))
+    inside = ok & ~beyond
+    return i, j, xi, eta, inside
