@@ -262,6 +262,32 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     if I:
         I, Jp, M, E = (np.array(v, int) for v in (I, Jp, M, E))
         try_solve(I, Jp, M, E, x[I, Jp])
+    # 1b. a pair whose surface solve is lost altogether next to a position where it touches on the real flanks: the
+    # boundary nearest that contact on each member (and the mate's boundary that meets it) is tried from there
+    seeds = {}
+    for i, j in zip(*np.nonzero(phys)):
+        for d in (-1, 1):
+            k = int(i + d)
+            if not (0 <= k < n) or phys[k, j] or (k, int(j)) in label:
+                continue
+            x0 = x[i, j].copy()
+            x0[4] -= prob.ratio * (phi1[k] - phi1[i])
+            for m in (0, 1):
+                with np.errstate(invalid="ignore"):
+                    gm = np.asarray(surfs[m].boundary_margins(x[i, j][None, 2 * m:2 * m + 2]), float)[0]
+                usable = [e for e, nm in enumerate(names[m]) if nm != "generated" and np.isfinite(gm[e])]
+                if not usable:
+                    continue
+                e = min(usable, key=lambda e: gm[e])
+                seeds.setdefault((k, int(j), m, e), x0)
+                for other in mate.get(names[m][e], ()):
+                    if other in names[1 - m]:
+                        seeds.setdefault((k, int(j), 1 - m, names[1 - m].index(other)), x0)
+    if seeds:
+        keys = list(seeds)
+        try_solve(np.array([q[0] for q in keys]), np.array([q[1] for q in keys]), np.array([q[2] for q in keys]),
+                  np.array([q[3] for q in keys]), np.array([seeds[q] for q in keys]))
+
     # 2. march to neighbouring positions without a contact of the real flanks (the surface contact of the pair is
     # lost there altogether), from the neighbour's edge solution
     def leads(i, j):
