@@ -85,8 +85,10 @@ def _invoke(argv, root: Path, allowed):
     assert _snapshot(root, allowed) == before, argv
 
 
-# generation only (no shrinking): the time stays bounded, and a failure still prints the generated input
-BOUNDED = settings(max_examples=25, deadline=None, suppress_health_check=list(HealthCheck),
+# generation only (no shrinking): the time stays bounded, and a failure still prints the generated input;
+# derandomized, so CI runs the same inputs each time (a random draw once hit a 34 s-CPU face-milled run: slow, not a
+# hang); the random campaign of 2,000 inputs is bench/fuzz_cli.py
+BOUNDED = settings(max_examples=25, deadline=None, suppress_health_check=list(HealthCheck), derandomize=True,
                    phases=[Phase.explicit, Phase.reuse, Phase.generate])
 
 

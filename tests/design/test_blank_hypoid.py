@@ -226,6 +226,19 @@ def test_cli_blank_shows_the_hypoid_sheet_and_run_stops_after_it(tmp_path):
     assert "Traceback" not in res.output and not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("argv", [["machine"], ["check"], ["rate"]], ids=["machine", "check", "rate"])
+def test_other_commands_stop_on_a_hypoid_instead_of_ignoring_the_offset(tmp_path, argv):
+    f = tmp_path / "hypoid.toml"
+    rating = ("\n[rating]\npinion_torque = 300.0\npinion_speed = 1200.0\nsigma_Hlim = 1500.0\nsigma_Flim = 480.0\n"
+              "oil_viscosity = 150.0\naccuracy_grade = 6\n"
+              if argv == ["rate"] else "")
+    f.write_text(SAMPLE2_TOML + rating)
+    res = CliRunner().invoke(app, [*argv, str(f)])
+    assert res.exit_code == 2, res.output
+    assert "gear_set.hypoid_offset" in " ".join(res.output.split())
+    assert "Traceback" not in res.output
+
+
 def test_random_hypoid_data_give_a_sheet_or_a_design_error():
     """Bad hypoid data never raise a bare exception or give a non-finite figure (60 random designs, both offset
     signs, Sigma 75-100 deg, all computed tapers)."""

@@ -63,6 +63,9 @@ def setup_flanks(spec, blank, with_synthesis: bool = False):
     With a ``[synthesis]`` section the pinion flank of each listed side is then replaced by local synthesis from the
     mating gear flank (:func:`synthesize_sides`); ``with_synthesis`` also returns {side name: SynthesisResult}.
     """
+    from .blank import require_no_offset
+
+    require_no_offset(blank, "face-milled flanks")
     out = _basic_setups(spec, blank)
     synth = {}
     sy = effective_synthesis(spec, blank)

@@ -79,8 +79,11 @@ def rating_from_design(spec: DesignFile, blank=None):
     from ..rating import rate_iso10300
     from .blank import blank_from_design
 
+    from .blank import require_no_offset
+
     if blank is None:
         blank = blank_from_design(spec)
+    require_no_offset(blank, "spiralbevel rate (ISO 10300 Method B1 for spiral bevel gears)")
     return rate_iso10300(blank, rating_input_from_design(spec, blank))
 
 
