@@ -83,3 +83,21 @@ def gear_candidate(points, delta2, beta2, psi_sign=1.0, margin=0.2):
 def wrap(x):
     """Angle difference wrapped to (-pi, pi]."""
     return (np.asarray(x) + np.pi) % (2 * np.pi) - np.pi
+
+
+def seed001_synthesized_pair():
+    """Seed 001 drive pair: Table 4 gear convex flank and the pinion concave flank from local synthesis (eta = 6 deg,
+    a = 3.7 mm, 3 arcsec parabolic TE), phased for meshing. Returns (pinion surface, gear surface, kinematics)."""
+    import math
+
+    from spiralbevel.conventions import Member, Side
+    from spiralbevel.machine import seed001_blank, seed001_settings
+    from spiralbevel.meshing.generated_surface import phased_for_pair
+    from spiralbevel.meshing.synthesis import synthesize_pinion
+
+    blank = seed001_blank()
+    gc, gs = seed001_settings()[(Member.GEAR, Side.CONVEX)]
+    r = synthesize_pinion(gc, gs, blank, side=Side.CONCAVE, eta=math.radians(6.0), semi_major_axis=3.7,
+                          te_magnitude=3.0 * math.pi / 648000.0)
+    c1, c2 = phased_for_pair(r.pinion_flank, r.gear_flank)
+    return c1, c2, BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from _contact_oracle import Oracle
+from _meshing_helpers import seed001_synthesized_pair
 
 from spiralbevel.conventions import Member, Side
 from spiralbevel.machine import seed001_blank, seed001_settings
@@ -39,14 +40,7 @@ def _box(surface):
 
 
 def _synthesized():
-    from spiralbevel.meshing.synthesis import synthesize_pinion
-
-    blank = seed001_blank()
-    gc, gs = seed001_settings()[(Member.GEAR, Side.CONVEX)]
-    r = synthesize_pinion(gc, gs, blank, side=Side.CONCAVE, eta=math.radians(6.0), semi_major_axis=3.7,
-                          te_magnitude=3 * ARCSEC)
-    c1, c2 = phased_for_pair(r.pinion_flank, r.gear_flank)
-    kin = BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
+    c1, c2, kin = seed001_synthesized_pair()
     return c1, c2, kin, dict(start=np.r_[c1.reference_params, c2.reference_params, 0.0])
 
 

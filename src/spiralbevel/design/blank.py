@@ -170,17 +170,10 @@ def _method0_quantities(inp: BlankInput) -> dict:
     betas = _spiral_angles(inp, rm, (re1, re2), (ri1, ri2))
 
     alpha_lim = 0.0  # ISO 23509 limit pressure angle, identically 0 when a = 0 (Rm1 = Rm2, beta_m1 = beta_m2)
-    alpha_nD = inp.alpha_dD + inp.f_alim * alpha_lim
-    alpha_nC = inp.alpha_dC - inp.f_alim * alpha_lim
-    alpha_eD, alpha_eC = alpha_nD - alpha_lim, alpha_nC + alpha_lim
-    alpha_n = 0.5 * (alpha_nD + alpha_nC)  # ISO 23509 mean normal pressure angle
+    alpha_nD, alpha_nC, alpha_eD, alpha_eC, alpha_n = inp.pressure_angles(alpha_lim)
 
     c_ham = inp.c_ham_value
-    hmw = inp.k_d * mmn
-    c = inp.k_c * hmw
-    ham2 = c_ham * hmw
-    ham1 = hmw - ham2
-    hfm1, hfm2 = ham2 + c, ham1 + c
+    hmw, c, ham1, ham2, hfm1, hfm2 = inp.mean_depths(mmn)
     x_hm1 = (ham1 - ham2) / (2.0 * mmn)
 
     ta = taper_angles(inp.taper, hfm1=hfm1, hfm2=hfm2, rm=rm, re2=re2, met=met, beta_m=beta_m,

@@ -106,17 +106,10 @@ def _quantities(inp: BlankInput) -> dict:
     mmn = dm2 * math.cos(bm2) / z2
 
     alim = pc["alpha_lim"]
-    alpha_nD = inp.alpha_dD + inp.f_alim * alim
-    alpha_nC = inp.alpha_dC - inp.f_alim * alim
-    alpha_eD, alpha_eC = alpha_nD - alim, alpha_nC + alim
-    alpha_n = 0.5 * (alpha_nD + alpha_nC)
+    alpha_nD, alpha_nC, alpha_eD, alpha_eC, alpha_n = inp.pressure_angles(alim)
 
     c_ham = inp.c_ham_value
-    hmw = inp.k_d * mmn
-    c = inp.k_c * hmw
-    ham2 = c_ham * hmw
-    ham1 = hmw - ham2
-    hfm1, hfm2 = ham2 + c, ham1 + c
+    hmw, c, ham1, ham2, hfm1, hfm2 = inp.mean_depths(mmn)
     ta = taper_angles(inp.taper, hfm1=hfm1, hfm2=hfm2, rm=rm2, re2=re2, met=met, beta_m=bm2,
                       tan_alpha=math.tan(alpha_n), rc0=rc0, c_ham=c_ham,
                       given={k: getattr(inp, k) for k in ("theta_a1", "theta_a2", "theta_f1", "theta_f2")})

@@ -143,6 +143,34 @@ class BlankInput:
         """Mean addendum factor used: the given one or 0.210 + 0.290/u² (Gleason/ISO recommendation)."""
         return float(self.c_ham) if self.c_ham is not None else 0.210 + 0.290 / self.u**2
 
+    def pressure_angles(self, alpha_lim: float) -> tuple[float, float, float, float, float]:
+        """ISO 23509 pressure angles for a limit pressure angle ``alpha_lim`` (rad; 0 without offset).
+
+        Returns
+        -------
+        alpha_nD, alpha_nC, alpha_eD, alpha_eC, alpha_n : float, rad
+            Generated (normal) drive and coast angles ``alpha_d + -f_alim*alpha_lim``, effective angles
+            ``alpha_n -+ alpha_lim`` and the mean normal pressure angle (mean of drive and coast).
+        """
+        alpha_nD = self.alpha_dD + self.f_alim * alpha_lim
+        alpha_nC = self.alpha_dC - self.f_alim * alpha_lim
+        return alpha_nD, alpha_nC, alpha_nD - alpha_lim, alpha_nC + alpha_lim, 0.5 * (alpha_nD + alpha_nC)
+
+    def mean_depths(self, mmn: float) -> tuple[float, float, float, float, float, float]:
+        """ISO 23509 depths at the mean point for the mean normal module ``mmn`` (mm).
+
+        Returns
+        -------
+        hmw, c, ham1, ham2, hfm1, hfm2 : float, mm
+            Working depth k_d*mmn, clearance k_c*hmw, addenda (c_ham*hmw on the wheel) and dedenda (mate's addendum
+            plus clearance).
+        """
+        hmw = self.k_d * mmn
+        c = self.k_c * hmw
+        ham2 = self.c_ham_value * hmw
+        ham1 = hmw - ham2
+        return hmw, c, ham1, ham2, ham2 + c, ham1 + c
+
     @property
     def b1_value(self) -> float:
         """Pinion face width used, mm."""

@@ -10,34 +10,24 @@ with the synthesized pinion (real flanks with their edges):
 """
 
 import dataclasses
-import math
 
 import numpy as np
 import pytest
 
-from spiralbevel.conventions import Member, Side
-from spiralbevel.machine import seed001_blank, seed001_settings
+from _meshing_helpers import seed001_synthesized_pair
+
 from spiralbevel.meshing.ellipse import hertz_peak_pressure
-from spiralbevel.meshing.generated_surface import phased_for_pair
-from spiralbevel.meshing.kinematics import BevelPairKinematics
 from spiralbevel.meshing.ltca import contact_modulus, ltca_model
 from spiralbevel.meshing.ltca.ltca import ContactPosition
 from spiralbevel.meshing.tca import solve_tca
-from spiralbevel.meshing.tca_result import ARCSEC, ContactStatus
+from spiralbevel.meshing.tca_result import ContactStatus
 
 TORQUE = 50e3  # N mm, about the approach torque of this pair (47.5 N m)
 
 
 @pytest.fixture(scope="module")
 def pair_tca():
-    from spiralbevel.meshing.synthesis import synthesize_pinion
-
-    blank = seed001_blank()
-    gc, gs = seed001_settings()[(Member.GEAR, Side.CONVEX)]
-    r = synthesize_pinion(gc, gs, blank, side=Side.CONCAVE, eta=math.radians(6.0), semi_major_axis=3.7,
-                          te_magnitude=3 * ARCSEC)
-    c1, c2 = phased_for_pair(r.pinion_flank, r.gear_flank)
-    kin = BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
+    c1, c2, kin = seed001_synthesized_pair()
     tca = solve_tca(c1, c2, kin, n_positions=21, start=np.r_[c1.reference_params, c2.reference_params, 0.0])
     return c1, c2, kin, tca
 
