@@ -23,8 +23,9 @@ from spiralbevel.design.hypoid_member import member_blank
 from spiralbevel.errors import GeometryError
 from spiralbevel.generation.basic_settings_solve import solve_basic_settings
 from spiralbevel.machine.default_cutter import default_cutter
+from spiralbevel.meshing.generated_surface import GeneratedSurface
 
-__all__ = ["hypoid_basic_flanks", "pitch_point"]
+__all__ = ["hypoid_basic_flanks", "phased_for_hypoid_pair", "pitch_point"]
 
 
 def hypoid_basic_flanks(blank, cutters: dict | None = None, roll: str = "pitch") -> dict:
@@ -87,3 +88,20 @@ def pitch_point(kinematics, blank):
     base, half = math.atan2(B, A), math.acos(C / amp)
     cands = [c + o2 + r1 * np.array([math.cos(t), math.sin(t), 0.0]) for t in (base + half, base - half)]
     return min(cands, key=lambda X: abs(np.linalg.norm(X - o2) - Rm2))
+
+
+def phased_for_hypoid_pair(kinematics, blank, pinion_flank, gear_flank):
+    """Contact surfaces of a pinion and a wheel flank turned about their axes so that both mean points sit at the
+    pitch point P (:func:`pitch_point`) at zero roll, in the pair frame of ``kinematics``.
+
+    The hypoid counterpart of ``spiralbevel.meshing.generated_surface.phased_for_pair`` (where P lies on the pitch
+    line in the xz-plane). Returns ``(GeneratedSurface, GeneratedSurface)`` for ``spiralbevel.meshing.tca.solve_tca``
+    with the same ``kinematics``.
+    """
+    _, o1, _, o2, B2 = kinematics.axes()
+    P = pitch_point(kinematics, blank)
+    q1, q2 = P - o1, B2.T @ (P - o2)        # P in the pinion frame (phi1 = 0) and in the gear frame (phi2 = 0)
+    p1, p2 = pinion_flank.mean_point().point, gear_flank.mean_point().point
+    a1 = math.atan2(q1[1], q1[0]) - math.atan2(p1[1], p1[0])
+    a2 = math.atan2(q2[1], q2[0]) - math.atan2(p2[1], p2[0])
+    return GeneratedSurface(pinion_flank, a1), GeneratedSurface(gear_flank, a2)
