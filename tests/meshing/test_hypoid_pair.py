@@ -44,7 +44,7 @@ def sample2():
 def test_achieved_angles_equal_the_design(sample2):
     blank, flanks = sample2
     assert blank.beta_m1 - blank.beta_m2 > R(11.0)        # a real hypoid: the spiral angles differ by zeta_mp
-    for (member, side), (_, settings, flank, _) in flanks.items():
+    for (member, side), (_, _, flank, _) in flanks.items():
         mp = flank.mean_point()
         i = member.index
         assert mp.spiral_angle == pytest.approx(getattr(blank, f"beta_m{i}"), abs=ANGLE_TOL)
