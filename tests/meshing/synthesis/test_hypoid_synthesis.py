@@ -116,3 +116,41 @@ def test_synthesized_tca_matches_brute_force(synthesized):
     lead = np.max(np.where(np.isfinite(p2), -res.drive_sign * p2, -np.inf), axis=1)
     d = (-res.drive_sign * res.phi2[idx] - lead) / ARCSEC
     assert np.all(np.isfinite(d)) and np.max(np.abs(d)) <= 0.1, np.round(d, 5)
+
+
+@pytest.mark.parametrize("side", [Side.CONCAVE, Side.CONVEX])
+def test_synthesized_pinion_keeps_the_design_angles(synthesized, side):
+    """The synthesized pinion passes through the pitch point with the wheel's normal: its own mean point (R_m1 on its
+    pitch cone) keeps the design spiral and pressure angles."""
+    from spiralbevel.machine.default_cutter import design_pressure_angle
+
+    blank, syn, _, _, _ = synthesized[side]
+    mp = syn.pinion_flank.mean_point()
+    # the mean point is located to ~1e-10 mm and the fit reaches M to 1e-9: ~1e-7 deg measured
+    assert math.degrees(abs(mp.spiral_angle - blank.beta_m1)) < 1e-5
+    assert math.degrees(abs(mp.pressure_angle - design_pressure_angle(blank, Member.PINION, side))) < 1e-5
+
+
+def test_mirror_of_hands():
+    """The pair of the opposite hands (right-hand pinion, left-hand wheel, E = +a) is the mirror image: the same
+    synthesized settings and the same transmission error, run backwards (the mirror y -> -y turns both rotations
+    the other way: the positions phi1 of one pair are -phi1 of the other)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        blanks = [compute_blank(BlankInput(**SAMPLE2, hand1=h)) for h in ("LH", "RH")]
+    out = []
+    for blank in blanks:
+        flanks = hypoid_basic_flanks(blank)
+        c, s, _, _ = flanks[(Member.PINION, Side.CONCAVE)]
+        syn = synthesize_hypoid_pinion(flanks[(Member.GEAR, Side.CONVEX)][2], c, s, blank, eta=ETA,
+                                       semi_major_axis=A, te_magnitude=TE)
+        c1, c2 = GeneratedSurface(syn.pinion_flank, syn.phi1_mean), GeneratedSurface(syn.gear_flank, syn.phi2_mean)
+        res = solve_tca(c1, c2, syn.kinematics, n_positions=11,
+                        start=np.r_[c1.reference_params, c2.reference_params, 0.0])
+        out.append((syn, res))
+    (a, ra), (b, rb) = out
+    assert a.kinematics.offset == -b.kinematics.offset != 0.0
+    np.testing.assert_allclose(b.point * [1, -1, 1], a.point, atol=1e-9)
+    for key in ("radial_setting", "cradle_angle", "ratio_of_roll", "blank_offset"):
+        assert getattr(b.pinion_settings, key) == pytest.approx(getattr(a.pinion_settings, key), rel=1e-8, abs=1e-9)
+    np.testing.assert_allclose(rb.te_arcsec[::-1], ra.te_arcsec, atol=1e-6, equal_nan=True)
