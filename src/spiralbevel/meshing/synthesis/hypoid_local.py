@@ -40,7 +40,7 @@ from .local import te_parabola_coefficient
 from .machine_fit import FREE_DEFAULT, fit_settings
 from .mean_contact import path_reference
 
-__all__ = ["HypoidSynthesis", "hypoid_path_terms", "synthesize_hypoid_pinion"]
+__all__ = ["HypoidSynthesis", "hypoid_path_terms", "synthesize_hypoid_pinion", "tca_surfaces"]
 
 
 def hypoid_path_terms(r, n, K2, kinematics, eps2):
@@ -198,3 +198,14 @@ def synthesize_hypoid_pinion(gear_flank, pinion_cutter, pinion_settings, blank, 
         pinion_params=np.array([u, 0.0]), relative_tensor=K, semi_axes=np.sqrt(2.0 * approach / lam),
         eta=float(eta), path_gear=t_path, path_speed=float(np.linalg.norm(v_r2)), m21_prime=float(m21_prime),
         approach=float(approach), drive_sign=drive, iterations=info["iterations"], residual=info["residual"])
+
+
+def tca_surfaces(synthesis: HypoidSynthesis):
+    """Contact surfaces of the synthesized pair for ``solve_tca`` with ``synthesis.kinematics``: both flanks turned so
+    that their points of M meet at M at zero roll; returns ``(pinion, gear, start)`` with ``start`` (5,) the TCA's
+    starting guess at the mean contact."""
+    from ..generated_surface import GeneratedSurface
+
+    c1 = GeneratedSurface(synthesis.pinion_flank, synthesis.phi1_mean)
+    c2 = GeneratedSurface(synthesis.gear_flank, synthesis.phi2_mean)
+    return c1, c2, np.r_[c1.reference_params, c2.reference_params, 0.0]
