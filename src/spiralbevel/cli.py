@@ -233,7 +233,13 @@ def machine(design: Optional[Path] = DesignArg):
     spec = _load(design)
     if spec.flank.kind != "face-milled":
         raise DesignError.single("flank.kind", spec.flank.kind, "'face-milled' for a machine summary", "-")
-    setups = setup_flanks(spec, blank_from_design(spec))
+    blank = blank_from_design(spec)
+    if blank.a != 0.0:   # a hypoid: basic settings at each member's mean cone distance, pinion by hypoid synthesis
+        from .job.hypoid import setup_hypoid_flanks
+
+        setups = setup_hypoid_flanks(spec, blank)
+    else:
+        setups = setup_flanks(spec, blank)
     for (m, s), st in setups.items():
         table = Table(title=f"{m.value} {s.value} ({st.source})")
         table.add_column("setting")
