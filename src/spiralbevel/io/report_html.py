@@ -291,7 +291,7 @@ def write_run_report_html(out_dir, report: dict, teeth: dict, shaft_angle: float
 
 
 _PAGE = """<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8">
+<html lang="en"><head><meta charset="utf-8"><link rel="icon" href="data:,">
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <title>{title}: spiralbevel report</title>
 <style>{css}</style></head>

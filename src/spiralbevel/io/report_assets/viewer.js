@@ -156,16 +156,22 @@
   canvas.addEventListener("wheel", function (e) {
     e.preventDefault(); cam.distance *= Math.exp(e.deltaY * 0.001); draw(); }, {passive: false});
   function button(id, fn) { var b = document.getElementById(id); if (b) { b.addEventListener("click", fn); } }
-  button("pair-reset", function () { cam = JSON.parse(JSON.stringify(home)); roll = 0; draw(); });
+  var home_centre = centre.slice();
+  button("pair-reset", function () {
+    cam = JSON.parse(JSON.stringify(home)); centre = home_centre.slice(); roll = 0; draw(); });
   button("pair-roll", function () { animate = !animate; if (animate) { window.requestAnimationFrame(frame); } });
   members.forEach(function (m) {
     button("pair-toggle-" + m.name, function () { m.visible = !m.visible; draw(); });
   });
   window.addEventListener("resize", draw);
-  // for scripted use (tests, screenshots): set the camera or the roll angle and redraw
+  // for scripted use (tests, screenshots): set the camera (optionally the point looked at, pair frame, mm) or the
+  // roll angle (pinion, rad) and redraw
   window.spiralbevelView = {
-    set: function (yaw, pitch, distanceFactor, rollAngle) {
-      cam.yaw = yaw; cam.pitch = pitch; cam.distance = distanceFactor * size; roll = rollAngle || 0; draw(); }
+    set: function (yaw, pitch, distanceFactor, rollAngle, target) {
+      cam.yaw = yaw; cam.pitch = pitch; cam.distance = distanceFactor * size; roll = rollAngle || 0;
+      if (target) { centre = target.slice(); }
+      draw();
+    }
   };
   draw();
   var triangles = data.members.reduce(function (s, m) { return s + m.triangles * m.teeth; }, 0);
