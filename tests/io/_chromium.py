@@ -4,6 +4,7 @@ console errors and uncaught exceptions, evaluate JavaScript, take screenshots.""
 from __future__ import annotations
 
 import base64
+import contextlib
 import json
 import os
 import shutil
@@ -110,6 +111,13 @@ class Browser:
             self._event(msg)
             if msg.get("method") == method:
                 return msg.get("params", {})
+
+    @contextlib.contextmanager
+    def fresh(self):
+        """The browser with its error and request logs emptied (for one page of several)."""
+        self.errors.clear()
+        self.requests.clear()
+        yield self
 
     def load(self, url: str) -> None:
         """Navigate and wait for the load event."""

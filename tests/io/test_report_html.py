@@ -111,6 +111,22 @@ def test_curves_over_the_rotation_are_plotted():
     assert "pair +0" in html
 
 
+def test_failures_and_warnings_are_listed_once():
+    report = {"blank": {"warnings": ["w1"]}, "blank_warnings": ["w1"],
+              "tca": {"drive": {"status": "failed", "reason": "no contact at the mean point"}},
+              "draft": {"flanks": {"pinion_convex": {"passes": False}}},
+              "failed_analyses": [{"analysis": "TCA, drive side", "reason": "no contact at the mean point"}]}
+    html = render_report_html(report)
+    warnings = html.split('id="warnings"', 1)[1].split("</section>", 1)[0]
+    assert "Warnings (4)" in warnings and warnings.count("w1") == 1
+    assert "tca.drive: failed (no contact at the mean point)" in warnings
+    assert "draft.flanks.pinion_convex: does not pass" in warnings
+    assert "failed: TCA, drive side" in warnings
+    # the failed analysis keeps its place in its section, marked
+    tca = html.split('id="tca"', 1)[1].split("</section>", 1)[0]
+    assert 'class="bad">Failed: no contact at the mean point' in tca
+
+
 def _cube():
     corners = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
     quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
@@ -182,13 +198,17 @@ def test_tooth_centre_of_a_symmetric_tooth():
 # -- the page in a real browser --------------------------------------------------------------------------------------
 
 
-def _browser():
+@pytest.fixture(scope="module")
+def browser():
+    """One headless Chromium for the pages of this module (about 1 s to start)."""
     pytest.importorskip("websocket")  # websocket-client, extra 'test'
     if chromium_path() is None:
         if os.environ.get("CI"):
             pytest.fail("CI installs Chromium (.ci/run): it is missing")
         pytest.skip("no Chromium on this machine")
-    return Browser(width=1280, height=900)
+    with Browser(width=1280, height=900) as b:
+        b.call("Network.enable")
+        yield b
 
 
 def _pixels(png: bytes) -> np.ndarray:
@@ -200,10 +220,9 @@ def _pixels(png: bytes) -> np.ndarray:
 
 
 @pytest.mark.parametrize("which", ["logspiral_run", "facemilled_run"])
-def test_page_in_headless_chromium(which, request):
+def test_page_in_headless_chromium(which, request, browser):
     out, report = request.getfixturevalue(which)
-    with _browser() as b:
-        b.call("Network.enable")
+    with browser.fresh() as b:
         b.load((out / "report.html").as_uri())
         # every section is there with content, and the nav links to each
         sections = b.evaluate("Array.from(document.querySelectorAll('main > section')).map("

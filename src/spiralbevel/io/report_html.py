@@ -208,8 +208,8 @@ def render_report_html(report: dict, out_dir=None, view: dict | None = None) -> 
                          f"{curves}{inner}</div>")
         figs = [f for f in pngs if f not in used_figures and any(fnmatch.fnmatch(f, g) for g in s.figures)]
         used_figures.update(figs)
-        if figs and out_dir is not None:
-            parts.append('<div class="figs">' + "".join(_figure(out_dir, f) for f in figs) + "</div>")
+        if figs and out_dir is not None:  # the pictures first, the numbers below them
+            parts.insert(0, '<div class="figs">' + "".join(_figure(out_dir, f) for f in figs) + "</div>")
         add_section(s.id, s.title, "".join(parts) or f'<p class="note">{escape(s.absent)}</p>')
 
     warnings = _warnings(report)
