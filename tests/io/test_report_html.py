@@ -125,6 +125,8 @@ def test_failures_and_warnings_are_listed_once():
     # the failed analysis keeps its place in its section, marked
     tca = html.split('id="tca"', 1)[1].split("</section>", 1)[0]
     assert 'class="bad">Failed: no contact at the mean point' in tca
+    # without tooth meshes the 3-D section says why, and the page carries no viewer script
+    assert "No 3-D view" in html and "pair-canvas" not in html and "getContext" not in html
 
 
 def _cube():

@@ -47,7 +47,18 @@ def line_chart(series: list[tuple[str, list, list]], xlabel: str, ylabel: str, t
     xt = nice_ticks(min(p[0] for p in pts), max(p[0] for p in pts))
     yt = nice_ticks(min(p[1] for p in pts), max(p[1] for p in pts))
     x0, x1, y0, y1 = xt[0], xt[-1], yt[0], yt[-1]
-    left, right, top, bottom = 64, 16, 28, 44
+    # legend below the x-axis label, in rows (never over the curves)
+    rows: list[list[tuple[int, str, float]]] = [[]]
+    x_at = 64.0
+    for i, (label, _, _) in enumerate(series):
+        w = 34 + 6.2 * len(label)
+        if rows[-1] and x_at + w > width - 16:
+            rows.append([])
+            x_at = 64.0
+        rows[-1].append((i, label, x_at))
+        x_at += w
+    left, right, top, bottom = 64, 16, 28, 44 + 16 * len(rows)
+    height += 16 * len(rows)
     pw, ph = width - left - right, height - top - bottom
 
     def sx(x):
@@ -66,7 +77,7 @@ def line_chart(series: list[tuple[str, list, list]], xlabel: str, ylabel: str, t
         out.append(f'<line x1="{left}" y1="{sy(t):.1f}" x2="{left + pw}" y2="{sy(t):.1f}" class="grid"/>'
                    f'<text x="{left - 5}" y="{sy(t) + 4:.1f}" text-anchor="end">{_fmt(t)}</text>')
     out.append(f'<rect x="{left}" y="{top}" width="{pw}" height="{ph}" class="frame"/>')
-    out.append(f'<text x="{left + pw / 2}" y="{height - 6}" text-anchor="middle">{escape(xlabel)}</text>')
+    out.append(f'<text x="{left + pw / 2}" y="{top + ph + 32}" text-anchor="middle">{escape(xlabel)}</text>')
     out.append(f'<text transform="translate(14 {top + ph / 2}) rotate(-90)" text-anchor="middle">{escape(ylabel)}'
                '</text>')
     for i, (label, xs, ys) in enumerate(series):
@@ -88,8 +99,11 @@ def line_chart(series: list[tuple[str, list, list]], xlabel: str, ylabel: str, t
             for x, y in r:
                 out.append(f'<circle cx="{sx(x):.1f}" cy="{sy(y):.1f}" r="2.2" fill="{colour}"><title>'
                            f'{escape(label)}: {_fmt(x)}, {_fmt(y)}</title></circle>')
-        ly = top + 14 + 14 * i
-        out.append(f'<line x1="{left + 8}" y1="{ly - 4}" x2="{left + 26}" y2="{ly - 4}" stroke="{colour}" '
-                   f'stroke-width="2"/><text x="{left + 30}" y="{ly}">{escape(label)}</text>')
+    for k, row in enumerate(rows):
+        ly = top + ph + 50 + 16 * k
+        for i, label, lx in row:
+            colour = _COLOURS[i % len(_COLOURS)]
+            out.append(f'<line x1="{lx:.0f}" y1="{ly - 4}" x2="{lx + 18:.0f}" y2="{ly - 4}" stroke="{colour}" '
+                       f'stroke-width="2"/><text x="{lx + 22:.0f}" y="{ly}">{escape(label)}</text>')
     out.append("</svg>")
     return "".join(out)
