@@ -11,6 +11,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from spiralbevel.cli import app
@@ -253,3 +255,24 @@ def test_page_in_headless_chromium(which, request, browser):
         assert page.std() > 0.05 and len(np.unique((page * 255).astype(np.uint8).reshape(-1, 3), axis=0)) > 50
         assert b.errors == [], b.errors
         assert b.requests == [], b.requests
+
+
+# keys the page treats specially, mixed with arbitrary ones
+_keys = st.sampled_from(["pinion_rotation_rad", "pinion_rotation_deg", "transmission_error_arcsec", "load_share",
+                         "pair_names", "status", "reason", "passes", "warnings", "checks", "failed_analyses", "units",
+                         "descriptions", "z1", "z2"]) | st.text(max_size=10)
+_json = st.recursive(
+    st.none() | st.booleans() | st.integers(-10**6, 10**6) | st.floats(allow_nan=False, allow_infinity=False)
+    | st.text(max_size=12),
+    lambda inner: st.lists(inner, min_size=3, max_size=4) | st.lists(inner, max_size=3)
+    | st.dictionaries(_keys, inner, max_size=6),
+    max_leaves=40)
+
+
+@settings(max_examples=80, deadline=None, derandomize=True)
+@given(st.dictionaries(st.sampled_from(["blank", "tca", "ltca", "flanks", "files", "title", "x_mm", "other"]) |
+                       st.text(max_size=8), _json, max_size=6))
+def test_any_json_report_renders(report):
+    # whatever the report's shape (keys renamed, lists of lists, odd types), the page is written, all sections closed
+    html = render_report_html(report)
+    assert html.count("<section") == html.count("</section>") == len(SECTIONS) + 4

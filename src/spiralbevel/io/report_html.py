@@ -88,9 +88,15 @@ def _get(report: dict, path: str):
     return node
 
 
+def _numbers(v) -> bool:
+    """A list of numbers (``None`` where a value does not exist)."""
+    return isinstance(v, list) and all(r is None or (isinstance(r, (int, float)) and not isinstance(r, bool))
+                                       for r in v)
+
+
 def _curves(d: dict) -> str:
     """SVG charts of the lists in ``d`` that run over the pinion rotation (TE together, every other list alone)."""
-    key = next((k for k in ROTATION_KEYS if isinstance(d.get(k), list) and len(d[k]) > 2), None)
+    key = next((k for k in ROTATION_KEYS if _numbers(d.get(k)) and len(d[k]) > 2), None)
     if key is None:
         return ""
     x = [None if v is None else (math.degrees(v) if key.endswith("_rad") else v) for v in d[key]]
@@ -99,15 +105,18 @@ def _curves(d: dict) -> str:
     for k, v in d.items():
         if k == key or not isinstance(v, list) or len(v) != len(x):
             continue
-        if all(isinstance(r, (int, float)) or r is None for r in v):
+        if _numbers(v):
             name = unit_of(k)[0].replace("_", " ")
             if fnmatch.fnmatch(k, TE_PATTERN):
                 te.append((name, x, v))
             else:
                 other.append((k, [(name, x, v)]))
-        elif all(isinstance(r, list) for r in v) and len({len(r) for r in v}) == 1:
-            names = d.get("pair_names") or [f"{k} {j}" for j in range(len(v[0]))]
-            other.append((k, [(str(names[j]), x, [r[j] for r in v]) for j in range(len(v[0]))]))
+        elif all(_numbers(r) for r in v) and len({len(r) for r in v}) == 1 and v[0]:
+            n = len(v[0])  # one column per tooth pair, named by pair_names when it fits
+            names = d.get("pair_names")
+            if not (isinstance(names, list) and len(names) == n):
+                names = [f"{k} {j}" for j in range(n)]
+            other.append((k, [(str(names[j]), x, [r[j] for r in v]) for j in range(n)]))
     charts = []
     if te:
         charts.append(line_chart(te, "pinion rotation [°]", "transmission error [″]", "Transmission error"))
@@ -180,7 +189,9 @@ def render_report_html(report: dict, out_dir=None, view: dict | None = None) -> 
 
     report = to_jsonable(report)
     out_dir = Path(out_dir) if out_dir is not None else None
-    pngs = [f for f in report.get("files", []) if f.endswith(".png")]
+    files = report.get("files")
+    files = [f for f in files if isinstance(f, str)] if isinstance(files, list) else []
+    pngs = [f for f in files if f.endswith(".png")]
     if out_dir is not None:
         pngs = [f for f in pngs if (out_dir / f).is_file()]
     claimed = [p for s in SECTIONS for p in s.paths]
@@ -233,7 +244,8 @@ def render_report_html(report: dict, out_dir=None, view: dict | None = None) -> 
 
 
 def _files_html(report: dict) -> str:
-    files = report.get("files", [])
+    files = report.get("files")
+    files = [str(f) for f in files] if isinstance(files, list) else []
     if not files:
         return ""
     return "<h3>Files of this run</h3><p>" + ", ".join(f"<code>{escape(f)}</code>" for f in files) + "</p>"
