@@ -361,12 +361,14 @@ def correct(
 @app.command()
 @_guard
 def sweep(
-    design: Path = typer.Argument(..., help="Face-milled design file or bundled example name."),
+    design: Path = typer.Argument(..., help="Face-milled design file, or a log-spiral one with [crowning] (the side of "
+                                  "its crowned pinion flank), or a bundled example name."),
     pinion_axial: Optional[str] = typer.Option(None, help="Delta A1 values, mm: 'v1,v2,...' or 'start:stop:count'."),
     gear_axial: Optional[str] = typer.Option(None, help="Delta A2 values, mm."),
     offset: Optional[str] = typer.Option(None, help="Delta E values, mm."),
     shaft_angle: Optional[str] = typer.Option(None, help="Delta gamma values, deg."),
-    side: str = typer.Option("drive", help="drive or coast"),
+    side: Optional[str] = typer.Option(None, help="drive or coast (default: drive; for a log-spiral design the side "
+                                       "of its crowned pinion flank)"),
     scheduler: Optional[str] = typer.Option(None, help="'sequential', or a dask scheduler address "
                                             "(tcp://host:port); default: dask's local processes if installed."),
     output: Optional[Path] = typer.Option(None, "--output", help="Write the records as JSON to this file."),
@@ -376,7 +378,7 @@ def sweep(
 
     texts = {"pinion_axial": pinion_axial, "gear_axial": gear_axial, "offset": offset, "shaft_angle": shaft_angle}
     grid = {k: parse_values(k, v) for k, v in texts.items() if v is not None}
-    if side not in ("drive", "coast"):
+    if side not in (None, "drive", "coast"):
         raise DesignError.single("--side", side, "'drive' or 'coast'", "-")
     check_scheduler(scheduler)
     if output is not None:
@@ -384,6 +386,10 @@ def sweep(
 
         check_output_file(output)
     spec = _load(design)
+    if side is None:
+        from .job.sweep import default_side
+
+        side = default_side(spec)
     records = misalignment_sweep(spec, grid, side=side, scheduler=scheduler)
     table = Table(title=f"Misalignment sweep, {side} side ({len(records)} TCA runs)")
     for col in ("dA1 mm", "dA2 mm", "dE mm", "dgamma deg", "TE p-p arcsec", "contact R mm", "contact h mm", "edge"):
