@@ -222,3 +222,13 @@ def test_ordered_curvatures_have_no_step_where_labels_swap():
     pts = _sheet(41, 9)
     fig = plot_flank_fields([("κ_max", pts, kmax, "1/mm"), ("κ_min", pts, kmin, "1/mm")] * 2, title="curvatures")
     _check(fig)
+
+
+def test_pressure_map_of_a_single_contact_line_falls_back_to_dots():
+    from spiralbevel.viz.ltca_plot import pressure_map
+
+    fig, ax = plt.subplots()
+    x = np.linspace(0, 4, 9)
+    art = pressure_map(ax, x, 2 * x + 1, 100 * np.sin(np.pi * x / 4), fig=fig)   # collinear: no triangle
+    assert type(art).__name__ == "PathCollection"
+    _check(fig)

@@ -77,14 +77,21 @@ def pressure_map(ax, x, y, p, fig=None, levels=12):
     Delaunay triangulation, zero-pressure points included so that the map falls to zero at the contact's edge.
 
     Triangles much longer than the point spacing (those that bridge a gap between contact lines at the edge of the
-    point cloud) are left blank. Returns the ``tricontourf`` artist (its colour bar is added when ``fig`` is given).
+    point cloud) are left blank. Returns the ``tricontourf`` artist (its colour bar is added when ``fig`` is given);
+    points that span no area (a single contact line) are drawn as dots instead.
     """
     import matplotlib.tri as mtri
 
     x, y, p = (np.asarray(a, float).ravel() for a in (x, y, p))
     keep = np.isfinite(x) & np.isfinite(y) & np.isfinite(p)
     x, y, p = x[keep], y[keep], np.maximum(p[keep], 0.0)
-    tri = mtri.Triangulation(x, y)
+    try:
+        tri = mtri.Triangulation(x, y)
+    except (ValueError, RuntimeError):  # fewer than 3 points, or all on one line: no area to fill
+        sc = ax.scatter(x, y, c=p, s=6, cmap="viridis")
+        if fig is not None:
+            fig.colorbar(sc, ax=ax, label="contact pressure (N/mm²)")
+        return sc
     t = tri.triangles
     edge = np.max(np.hypot(x[t] - x[np.roll(t, 1, axis=1)], y[t] - y[np.roll(t, 1, axis=1)]), axis=1)
     tri.set_mask(edge > 4.0 * np.median(edge))
