@@ -88,10 +88,10 @@ def meshing_pair_3d(pair, grids, out: Path) -> str:
             label = f"gear {s.value}" if k == 0 else None
             surfaces.append((label or "", pair.to_pair_frame(Member.GEAR, pts), color))
     surfaces = [(lab if lab else "_", p, c) for lab, p, c in surfaces]
-    # look down the pitch line from beyond the heel: the tooth's cross-section between the two gear teeth
-    elev = 90.0 - math.degrees(pair.pinion.pitch_angle)
+    # two cameras on the pinion axis side (the pinion tooth in front of the gear flanks), azimuths either side of
+    # the tooth's lengthwise direction
     views = [("from the pinion axis side: the pinion tooth in front of the gear teeth", 20.0, 150.0),
-             ("from the heel, along the pitch line", elev, 0.0)]
+             ("from the pinion axis side, higher and 50° further round", 50.0, 200.0)]
     return save_figure(plot_surfaces_3d(surfaces, title="Meshing tooth pair (pair frame, zero roll)", views=views),
                        out / "meshing_pair_3d.png")
 
