@@ -93,7 +93,10 @@ def plot_draft(result, ax=None, coords: str = "varphi", limit: float = 0.0, titl
 def _verdict(result, limit_deg: float) -> str:
     v = tuple(float(c) for c in np.round(result.die_direction, 3))
     share = 100 * result.failing_area_fraction
-    verdict = "draftable everywhere" if share == 0 else f"{share:.1f}% of the area below {limit_deg:g}° draft"
+    if share > 0:
+        verdict = f"{share:.1f}% of the area below {limit_deg:g}° draft"
+    else:
+        verdict = f"at least {limit_deg:g}° draft everywhere" if limit_deg > 0 else "draftable everywhere"
     return f"die along {v}: {verdict}"
 
 
