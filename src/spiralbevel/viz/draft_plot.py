@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import textwrap
 from typing import Any
 
 import numpy as np
@@ -85,7 +86,7 @@ def plot_draft(result, ax=None, coords: str = "varphi", limit: float = 0.0, titl
     ax.set_ylabel("spiral parameter ϕ [deg]")
     if title is None:
         title = f"{result.side.value} flank: " + _verdict(result, lim)
-    ax.set_title(title, fontsize=9)
+    ax.set_title("\n".join(textwrap.wrap(title, 58)), fontsize=9)   # at most the panel's width
     ax.legend(handles=handles, fontsize=7, loc="best")
     return fig
 
@@ -117,5 +118,5 @@ def plot_draft_maps(results):
         ax.set_visible(False)
     fig.suptitle("Forging draft: the angle by which each flank leans away from the die direction "
                  "(green passes, red fails)", fontsize=11)
-    fixed_layout(fig, rows, cols, right=0.9, wspace=1.6, hspace=0.8, suptitle=True)
+    fixed_layout(fig, rows, cols, right=0.9, top=0.5, wspace=1.6, hspace=1.0, suptitle=True)
     return fig
