@@ -70,8 +70,11 @@ def test_machine_settings_in_report(fm_run):
         rho = np.array([p[0], p[1], 0.0]) / math.hypot(p[0], p[1])
         N = math.cos(delta) * rho - math.sin(delta) * np.array([0.0, 0.0, 1.0])
         assert math.degrees(math.asin(abs(n @ N))) == pytest.approx(22.5, abs=2e-3)  # delta printed to 0.1"
+    # Table 5's 22 deg 30' blade with Table 5's settings: 22.75 deg, 0.12 deg from the given gear's 22.63 deg (the
+    # mean-point tangency of a synthesized pair; tests/machine/test_seed001_reading.py)
     given = fl["pinion"]["concave"]["design_vs_achieved"]
-    assert given["pressure_angle_deg"] < 22.0  # Table 5's 21 deg 10' blade with Table 5's settings
+    gear_given = fl["gear"]["convex"]["design_vs_achieved"]
+    assert abs(given["pressure_angle_deg"] - gear_given["pressure_angle_deg"]) < 0.15
 
 
 def test_machine_command_prints_summary():
