@@ -99,3 +99,18 @@ def test_bad_given_settings_named_by_design_file_path(tmp_path):
     assert result.exit_code == 2
     assert "face_milling.gear_convex.machine.radial_setting = 400.0 mm" in result.output
     assert "Traceback" not in result.output and not (tmp_path / "out").exists()
+
+
+def test_tca_checks_flag_the_given_drive_pair(fm_run):
+    """The given drive side (Tables 4 and 5) runs its bearing to the pinion's edge: the check says so at exactly the
+    positions the TCA marks without a real-flank contact or in edge contact, and names the given settings."""
+    _, report = fm_run
+    for name in ("drive", "coast"):
+        t = report["tca"][name]
+        off = len(t["edge_contact_positions_rad"]) + len(t["no_contact_positions_rad"])
+        bearing = [c for c in t["checks"] if "bearing runs off the flank" in c]
+        assert len(bearing) == (1 if off else 0), name
+        if off:
+            assert f"at {off} of {t['positions']} TCA positions" in bearing[0]
+    drive = [c for c in report["tca"]["drive"]["checks"] if "bearing" in c]
+    assert drive and "face_milling.pinion_concave" in drive[0]
