@@ -98,7 +98,8 @@ def test_pointed_teeth_at_the_achieved_angles(z1):
         assert _involute_top_land(dvn, s, ha, bl.alpha_nD, ac) > limit   # the nominal design is fine
         assert achieved_top_land(bl, k, bl.alpha_nD, ac) == []
         # the drive angle at which the top land reaches the limit, by the construction
-        a_lim = brentq(lambda a: _involute_top_land(dvn, s, ha, a, ac) - limit, bl.alpha_nD, math.radians(60.0))
+        a_lim = brentq(lambda a, dvn=dvn, s=s, ha=ha, lim=limit: _involute_top_land(dvn, s, ha, a, ac) - lim,
+                       bl.alpha_nD, math.radians(60.0))
         d = math.radians(0.01)
         assert achieved_top_land(bl, k, a_lim - d, ac) == []
         msgs = achieved_top_land(bl, k, a_lim + d, ac)

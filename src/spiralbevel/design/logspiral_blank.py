@@ -131,9 +131,10 @@ def _limits(z1, z2, sigma, alpha_n, beta_m, blank, bounds):
         psi = math.acos(min(1.0, math.cos(bounds[m].face_angle) / math.cos(d)))
         if not psi + abs(beta) < 0.5 * math.pi:
             field = field or "gear_set.mean_spiral_angle"
-            reasons.append(f"on the {m.value}'s concave flank |psi| + |beta| reaches {math.degrees(psi + abs(beta)):.3f}"
-                           " deg at the face cone (90 deg or more: the spherical-involute profile turns over, "
-                           "docs/theory/logspiral.md Eq. (S9); a smaller spiral angle or pressure angle lowers it)")
+            worst = math.degrees(psi + abs(beta))
+            reasons.append(f"on the {m.value}'s concave flank |psi| + |beta| reaches {worst:.3f} deg at the face cone "
+                           "(90 deg or more: the spherical-involute profile turns over, docs/theory/logspiral.md "
+                           "Eq. (S9); a smaller spiral angle or pressure angle lowers it)")
     if field is None:
         return None
     values = _clearing_values(z1, z2, sigma, alpha_n, beta_m, blank)
