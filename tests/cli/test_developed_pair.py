@@ -71,6 +71,20 @@ def test_default_pair_te_level(report):
         # +-10 % acceptance: the synthesis fixes the second derivative at the mean point; third-order terms of the
         # real flanks bend the curve away from the parabola by a few percent over the fitted window
         assert level == pytest.approx(DEFAULT_SYNTHESIS["te_magnitude"], rel=0.10), (name, level)
+        # the job's TE-level check fits the same parabola and stays silent within the 10 % acceptance
+        assert not [c for c in t["checks"] if "TE level" in c], name
+
+
+def test_bearing_check_agrees_with_the_contact_status(report):
+    """The bearing check of the report warns exactly when the TCA status has a position off the flank (S90-RH: none;
+    S75-LH: the known pinion-edge contact at the end of the drive cycle), and then names the synthesis keys."""
+    for name in ("drive", "coast"):
+        t = report["tca"][name]
+        off = len(t["edge_contact_positions_rad"]) + (t["positions"] - t["contact_positions"])
+        bearing = [c for c in t["checks"] if "bearing runs off the flank" in c]
+        assert len(bearing) == (1 if off else 0), (name, t["checks"])
+        if off:
+            assert "synthesis.path_direction" in bearing[0]
 
 
 def test_default_bearing_inside_the_flank(report, request):

@@ -70,8 +70,11 @@ def test_machine_settings_in_report(fm_run):
         rho = np.array([p[0], p[1], 0.0]) / math.hypot(p[0], p[1])
         N = math.cos(delta) * rho - math.sin(delta) * np.array([0.0, 0.0, 1.0])
         assert math.degrees(math.asin(abs(n @ N))) == pytest.approx(22.5, abs=2e-3)  # delta printed to 0.1"
+    # Table 5's 22 deg 30' blade with Table 5's settings: 22.75 deg, 0.12 deg from the given gear's 22.63 deg (the
+    # mean-point tangency of a synthesized pair; tests/machine/test_seed001_reading.py)
     given = fl["pinion"]["concave"]["design_vs_achieved"]
-    assert given["pressure_angle_deg"] < 22.0  # Table 5's 21 deg 10' blade with Table 5's settings
+    gear_given = fl["gear"]["convex"]["design_vs_achieved"]
+    assert abs(given["pressure_angle_deg"] - gear_given["pressure_angle_deg"]) < 0.15
 
 
 def test_machine_command_prints_summary():
@@ -98,3 +101,18 @@ def test_bad_given_settings_named_by_design_file_path(tmp_path):
     assert result.exit_code == 2
     assert "face_milling.gear_convex.machine.radial_setting = 400.0 mm" in result.output
     assert "Traceback" not in result.output and not (tmp_path / "out").exists()
+
+
+def test_tca_checks_flag_the_given_drive_pair(fm_run):
+    """The given drive side (Tables 4 and 5) runs its bearing to the pinion's edge: the check says so at exactly the
+    positions the TCA marks without a real-flank contact or in edge contact, and names the given settings."""
+    _, report = fm_run
+    for name in ("drive", "coast"):
+        t = report["tca"][name]
+        off = len(t["edge_contact_positions_rad"]) + len(t["no_contact_positions_rad"])
+        bearing = [c for c in t["checks"] if "bearing runs off the flank" in c]
+        assert len(bearing) == (1 if off else 0), name
+        if off:
+            assert f"at {off} of {t['positions']} TCA positions" in bearing[0]
+    drive = [c for c in report["tca"]["drive"]["checks"] if "bearing" in c]
+    assert drive and "face_milling.pinion_concave" in drive[0]

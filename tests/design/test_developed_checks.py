@@ -56,3 +56,52 @@ def test_flank_checks_name_the_key():
     assert "face_milling.pinion_concave.cutter.blade_angle" in msgs[0] and "-0.300 deg" in msgs[0]
     assert "face_milling.pinion_concave.machine" in msgs[1]
     assert "below the blank's root cone at the toe" in msgs[2]
+
+
+def _involute_top_land(d, s, ha, alpha_d, alpha_c):
+    """Top land of a spur tooth by the involute construction: each flank is the curve a taut string unwinds from its
+    own base circle (radius d/2 cos(alpha)); its polar angle at radius r is measured on the constructed point."""
+    import numpy as np
+
+    r, ra = 0.5 * d, 0.5 * d + ha
+
+    def polar(rb, rad):
+        t = math.sqrt((rad / rb) ** 2 - 1.0)
+        x, y = rb * (math.cos(t) + t * math.sin(t)), rb * (math.sin(t) - t * math.cos(t))
+        return float(np.arctan2(y, x))
+
+    width = s / r
+    for a in (alpha_d, alpha_c):
+        rb = r * math.cos(a)
+        width -= polar(rb, ra) - polar(rb, r)
+    return ra * width
+
+
+@pytest.mark.parametrize("z1", [12, 20])
+def test_pointed_teeth_at_the_achieved_angles(z1):
+    """The pointed-teeth check on the achieved angles switches on exactly where the involute construction of the
+    virtual normal spur tooth gives a top land of 0.2 m_n; below it nothing is flagged."""
+    from scipy.optimize import brentq
+
+    from spiralbevel.design.blank_checks import _MIN_TOPLAND, achieved_top_land
+    from spiralbevel.design.blank_thickness import virtual_normal_diameter
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        bl = blank_from_design(parse_design(DESIGN.format(z1=z1)))
+    ac = bl.alpha_nC
+    for k in (1, 2):
+        dvn = virtual_normal_diameter(bl.Rm, getattr(bl, f"delta{k}"), bl.beta_m1,
+                                      math.cos(0.5 * (bl.alpha_nD + bl.alpha_nC)) ** 2)
+        s, ha = getattr(bl, f"smn{k}"), getattr(bl, f"ham{k}")
+        limit = _MIN_TOPLAND * bl.mmn
+        assert _involute_top_land(dvn, s, ha, bl.alpha_nD, ac) > limit   # the nominal design is fine
+        assert achieved_top_land(bl, k, bl.alpha_nD, ac) == []
+        # the drive angle at which the top land reaches the limit, by the construction
+        a_lim = brentq(lambda a, dvn=dvn, s=s, ha=ha, lim=limit: _involute_top_land(dvn, s, ha, a, ac) - lim,
+                       bl.alpha_nD, math.radians(60.0))
+        d = math.radians(0.01)
+        assert achieved_top_land(bl, k, a_lim - d, ac) == []
+        msgs = achieved_top_land(bl, k, a_lim + d, ac)
+        assert len(msgs) == 1 and "gear_set.depth.thickness_factor" in msgs[0]
+        assert ("pinion" if k == 1 else "wheel") in msgs[0]

@@ -97,7 +97,7 @@ def test_left_hand_is_mirror_of_right_hand(blank, member, side):
 def test_seed001_gear_table4_mean_point(gear_t4):
     """seed 001 Tables 1 and 4 (gear, inner blade, modified blade angle 23 deg 50'): mean pitch point."""
     mp = gear_t4.mean_point()
-    # Table 1: mean spiral angle 30 deg; measured 29.985 deg (Table 4 is rounded: ratio 1.06, X_B = 0.051)
+    # Table 1: mean spiral angle 30 deg; measured 29.997 deg (Table 4 is rounded: ratio 1.06, X_B = -0.051)
     assert math.degrees(mp.spiral_angle) == pytest.approx(30.0, abs=0.05)
     # normal pressure angle: nominal blade angle 22 deg 30' on the pitch cone (the 1 deg 20' blade-angle
     # modification compensates the dedendum angle, theta_f2 sin(beta) = 1.24 deg); measured 22.63 deg
@@ -112,9 +112,11 @@ def test_seed001_gear_table4_mean_point(gear_t4):
 
 def test_seed001_table5_pinion(pinion_t5):
     mp = pinion_t5.mean_point()
-    # Table 5 pinion (outer blade 21 deg 10', E_m1 = 34.197 mm): spiral angle 30.13 deg, pressure angle 21.37 deg
+    # Table 5 pinion (outer blade 22 deg 30', E_m1 = 34.197 mm): spiral angle 30.13 deg, pressure angle 22.75 deg
+    # (the design 22 deg 30' of Table 1 plus the curvature of generation on the root plane; tests/machine/
+    # test_seed001_reading.py compares it with the gear)
     assert math.degrees(mp.spiral_angle) == pytest.approx(30.0, abs=0.25)
-    assert math.degrees(mp.pressure_angle) == pytest.approx(21 + 10 / 60, abs=0.3)
+    assert math.degrees(mp.pressure_angle) == pytest.approx(22.5, abs=0.3)
     assert mp.hand_sign == 1 and mp.k2 < 0                    # RH, concave lengthwise
     g = pinion_t5.grid(7, 5, 3)
     assert np.all(np.abs(pinion_t5.meshing_residual(g.u, g.theta, g.psi_c)) <= 1e-10)

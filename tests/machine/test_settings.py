@@ -45,7 +45,7 @@ def test_from_blank_reproduces_table4(blank, gear_t4):
 def test_seed001_fixtures(gear_t4):
     cutter, t4 = gear_t4
     assert cutter.blade is Blade.INNER and cutter.point_radius == 113.155 and cutter.edge_radius == 1.31
-    assert t4.sliding_base == 0.051 and t4.radial_setting == 115.078
+    assert t4.sliding_base == -0.051 and t4.radial_setting == 115.078
     pc, p5 = seed001_settings()[(Member.PINION, Side.CONCAVE)]
     assert pc.blade is Blade.OUTER and p5.blank_offset == 34.197 and p5.machine_centre_to_back == 1.231
 

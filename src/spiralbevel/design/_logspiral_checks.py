@@ -67,7 +67,8 @@ def check_boundaries(name, b, pitch_angle):
     # a parallel-depth blank (gear_set.depth.taper = "uniform": root and face angles equal the pitch angle) cannot
     # carry the tapered log-spiral tooth: say which key to change
     parallel = ("parallel depth (root and face angle equal to the pitch angle, as gear_set.depth.taper = 'uniform' "
-                "gives): the log-spiral tooth needs a tapered depth; use gear_set.depth.taper = 'standard' or "
+                "gives): the log-spiral tooth needs a tapered depth (its flank is similar to itself about the apex, "
+                "so its depth grows with the cone distance); use gear_set.depth.taper = 'standard' or "
                 "'duplex', or flank.kind = 'face-milled'")
     if not (0.0 < b.root_angle < pitch_angle):
         problems.append(Problem(f"{name}.root_angle", b.root_angle,

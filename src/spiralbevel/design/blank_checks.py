@@ -14,6 +14,8 @@ Criteria (all evaluated on the computed :class:`~spiralbevel.design.blank_result
   warning if the full mean dedendum hfm1 exceeds it (root undercut) or if the active depth exceeds it at the toe.
 * **Toe depth** (warning): whole depth at the toe below half the mean whole depth (steep taper, small cutter).
 * **Spiral angle** (warning): the toe spiral angle changes sign while βm > 0 (cutter radius small for the face).
+* **Contact ratio** (warning, no hypoid offset): ISO 10300-1 virtual cylindrical gears, transverse contact ratio
+  below 1 or total contact ratio below 2 (:mod:`~spiralbevel.design.contact_ratio`).
 """
 
 from __future__ import annotations
@@ -24,7 +26,8 @@ from ..errors import Problem
 from .blank_result import BevelBlank
 from .blank_thickness import tip_thickness, undercut_limit_depth, virtual_normal_diameter
 
-__all__ = ["check_blank", "normal_thickness", "top_land", "section_limit_depth", "achieved_undercut"]
+__all__ = ["check_blank", "normal_thickness", "top_land", "section_limit_depth", "achieved_undercut",
+           "achieved_top_land"]
 
 _MEMBER = {1: "pinion", 2: "wheel"}
 _MIN_TOPLAND = 0.2  # fraction of the normal module of the section
@@ -192,6 +195,10 @@ def check_blank(bl: BevelBlank) -> tuple[list[Problem], list[str]]:
         if hi < 0.5 * bl.hm:
             warn.append(f"whole depth of the {_MEMBER[k]} at the toe hi{k} = {hi:.4g} mm is less than half the mean "
                         f"whole depth hm = {bl.hm:.4g} mm (steep depthwise taper)")
+    if bl.a == 0.0:
+        from .contact_ratio import contact_ratio_warnings
+
+        warn.extend(contact_ratio_warnings(bl))
     if bl.beta_m1 > 0.0 and bl.beta_i1 < 0.0:
         warn.append(f"the toe spiral angle changes sign (beta_i = {math.degrees(bl.beta_i1):.4g} deg): cutter radius "
                     f"rc0 = {bl.rc0:.4g} mm is small for this face width")
@@ -229,3 +236,42 @@ def achieved_undercut(bl: BevelBlank, alpha_drive: float, alpha_coast: float) ->
         return [f"pinion root undercut {what} < dedendum hfm1 = {bl.hfm1:.4g} mm (below the active flank); "
                 "increase gear_set.normal_pressure_angle to clear it"]
     return []
+
+
+def achieved_top_land(bl: BevelBlank, k: int, alpha_drive: float, alpha_coast: float) -> list[str]:
+    """Pointed teeth of member ``k`` at the mean point with the pressure angles its generated flanks achieve.
+
+    The top land of :func:`top_land` at the mean point (virtual spur gear in the normal section, pitch-line thickness
+    smn, mean addendum), with the achieved mean-point normal pressure angles of the member's drive and coast flanks
+    instead of the nominal ones: a flank generated steeper than designed thins the tooth toward its tip.
+
+    Parameters
+    ----------
+    bl : BevelBlank
+    k : {1, 2}
+        Member (1 pinion, 2 wheel).
+    alpha_drive, alpha_coast : float, rad
+        Achieved mean-point normal pressure angles of the drive flank (pinion concave, gear convex) and the coast
+        flank (pinion convex, gear concave).
+
+    Returns
+    -------
+    list of str
+        A warning with the top land, the limit and the design-file keys to change; empty when the top land is at
+        least 0.2 m_n.
+    """
+    r, beta, ha, _hf = _section(bl, k, "m")
+    dvn = virtual_normal_diameter(r, _g(bl, "delta", k), beta, _cos2_alpha(bl))
+    sa = tip_thickness(dvn, _g(bl, "smn", k), ha, alpha_drive, alpha_coast)
+    limit = _MIN_TOPLAND * _mmt(bl, k) * math.cos(beta)
+    if sa >= limit:
+        return []
+    m = _MEMBER[k]
+    what = "pointed teeth" if sa <= 0.0 else "small top land"
+    # k_t > 0 thickens the pinion and thins the wheel; c_ham > its default moves addendum from the pinion to the wheel
+    thicker, shorter = ("raise", "raise") if k == 1 else ("lower", "lower")
+    return [f"{what} of the {m} at the achieved pressure angles {math.degrees(alpha_drive):.3f} / "
+            f"{math.degrees(alpha_coast):.3f} deg (drive / coast, mean point): top land sam{k} = {sa:.4g} mm < "
+            f"{_MIN_TOPLAND}*m_n = {limit:.4g} mm; {thicker} gear_set.depth.thickness_factor (a thicker {m}), "
+            f"{shorter} gear_set.depth.mean_addendum_factor (a shorter {m} addendum) or lower "
+            "gear_set.normal_pressure_angle"]

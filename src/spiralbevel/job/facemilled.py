@@ -458,6 +458,17 @@ def flank_report(setups, blank=None):
                                   math.radians(p["convex"]["pressure_angle_deg"]))
         for side in ("concave", "convex"):
             p[side].setdefault("checks", []).extend(found)
+    if blank is not None:
+        from ..design.blank_checks import achieved_top_land
+
+        for m_name, sides in flanks.items():   # drive = pinion concave / gear convex
+            if {"concave", "convex"} <= set(sides):
+                drive, coast = ("concave", "convex") if m_name == "pinion" else ("convex", "concave")
+                found = achieved_top_land(blank, 1 if m_name == "pinion" else 2,
+                                          math.radians(sides[drive]["pressure_angle_deg"]),
+                                          math.radians(sides[coast]["pressure_angle_deg"]))
+                for side in (drive, coast):
+                    sides[side].setdefault("checks", []).extend(found)
     for m_name, sides in flanks.items():
         for side, d in sides.items():
             for text in d.get("checks", ()):

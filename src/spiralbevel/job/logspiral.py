@@ -7,18 +7,17 @@ import math
 import numpy as np
 
 from ..conventions import Hand, Member, Side
-from ..design.logspiral_pair import BlankBoundaries, design_logspiral_pair
+from ..design.logspiral_pair import BlankBoundaries  # noqa: F401  (re-exported for callers of this module)
 
 MEMBERS = (Member.PINION, Member.GEAR)
 SIDES = (Side.CONVEX, Side.CONCAVE)
 
 
 def boundaries_from_blank(blank):
-    """Per-member :class:`BlankBoundaries` from an ISO 23509 blank (root/face cones taken with apex at O)."""
-    return {
-        Member.PINION: BlankBoundaries(blank.Ri1, blank.Re1, blank.delta_f1, blank.delta_a1),
-        Member.GEAR: BlankBoundaries(blank.Ri2, blank.Re2, blank.delta_f2, blank.delta_a2),
-    }
+    """Per-member :class:`BlankBoundaries` from an ISO 23509 blank (``design.logspiral_blank``)."""
+    from ..design.logspiral_blank import logspiral_boundaries
+
+    return logspiral_boundaries(blank)
 
 
 def design_pair(spec, blank):
@@ -26,13 +25,13 @@ def design_pair(spec, blank):
     from ..errors import DesignError
     from .problems import restated
 
+    from ..design.logspiral_blank import logspiral_pair_from_blank
+
     g = spec.gear_set
     try:
-        return design_logspiral_pair(
-            g.pinion_teeth, g.gear_teeth, math.radians(g.shaft_angle), math.radians(g.normal_pressure_angle),
-            math.radians(g.mean_spiral_angle), Hand(g.pinion_hand), boundaries_from_blank(blank),
-            thickness=getattr(blank, "smn1", None),
-        )
+        return logspiral_pair_from_blank(
+            blank, g.pinion_teeth, g.gear_teeth, math.radians(g.shaft_angle), math.radians(g.normal_pressure_angle),
+            math.radians(g.mean_spiral_angle), Hand(g.pinion_hand))
     except DesignError as err:
         raise restated(err, LOGSPIRAL_PATHS, default="log-spiral pair") from err
 
@@ -43,6 +42,9 @@ LOGSPIRAL_PATHS = {
     "normal_pressure_angle": "gear_set.normal_pressure_angle", "spiral_angle": "gear_set.mean_spiral_angle",
     "pinion_hand": "gear_set.pinion_hand", "thickness": "gear_set.depth.thickness_factor (pinion thickness)",
     "boundaries[pinion].": "gear_set.depth -> pinion blank", "boundaries[gear].": "gear_set.depth -> gear blank",
+    # the limits of design.logspiral_blank already name design-file keys
+    **{k: k for k in ("gear_set.normal_pressure_angle", "gear_set.mean_spiral_angle",
+                      "gear_set.depth.thickness_factor")},
 }
 
 

@@ -38,6 +38,7 @@ def run_facemilled(spec, blank, out, steps, report, summary):
         tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids, n_positions=n_pos)
         for name in ("drive", "coast"):
             mark_failed(summary.partial, report["tca"][name], f"TCA, {name} side")
+            _tca_checks(report, name, tca_results.get(name), synth, blank.z1)
         sens, failed = attempt(summary.partial, "misalignment sensitivity", misalignment_sensitivity, blank, setups,
                                "drive", n_positions=n_pos)
         report["tca"]["misalignment_sensitivity"] = failed or sens
@@ -138,3 +139,19 @@ class _Geo:
 
     def __init__(self, point, k1, k2):
         self.point, self.k1, self.k2 = point, k1, k2
+
+
+def _tca_checks(report, name, res, synth, z1):
+    """Bearing and TE-level checks of one side into ``tca.<side>.checks`` (and as design warnings)."""
+    import warnings
+
+    from ..errors import DesignWarning
+    from ..meshing.tca_checks import tca_checks
+
+    # the parabolic TE level of a local synthesis; a CMC design is checked against its own curve (tca.cmc)
+    local = name in synth and not hasattr(synth[name], "multipoint")
+    design = report.get("synthesis", {}).get(name, {}).get("te_magnitude_arcsec") if local else None
+    found = tca_checks(res, name, name in synth, design, z1)
+    report["tca"][name]["checks"] = found
+    for text in found:
+        warnings.warn(text, DesignWarning, stacklevel=2)

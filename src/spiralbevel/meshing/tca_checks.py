@@ -1,0 +1,97 @@
+"""Checks on the TCA of a developed pair: the bearing inside the flanks, the TE level against the design.
+
+Each check returns warnings with the reason and the design-file key to change (docs/conventions.md, "Developed-pair
+checks").
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+
+import numpy as np
+
+from .tca_result import ARCSEC
+
+__all__ = ["TE_LEVEL_TOL", "bearing_warnings", "te_level", "te_level_warnings", "tca_checks"]
+
+#: relative tolerance of the fitted parabolic TE level against the designed one (the acceptance of a developed pair:
+#: at the design TE level within 10 %)
+TE_LEVEL_TOL = 0.10
+
+#: design-file names of the pinion flank of each side
+_PINION_SIDE = {"drive": "concave", "coast": "convex"}
+
+
+def bearing_warnings(res, side: str, synthesized: bool) -> list[str]:
+    """The bearing runs off the flank: positions with no real-flank contact or in edge contact.
+
+    Parameters
+    ----------
+    res : TCAResult
+    side : {"drive", "coast"}
+    synthesized : bool
+        True when the pinion flank of this side comes from local synthesis (its path and ellipse are to change);
+        False for given machine settings.
+
+    Returns
+    -------
+    list of str
+        Empty when every position has a contact of the real flanks and none is an edge contact.
+    """
+    te = np.asarray(res.te)
+    off = ~np.isfinite(te) | np.asarray(res.edge_contact, bool)
+    n_off = int(np.sum(off))
+    if n_off == 0:
+        return []
+    where = Counter(f"{member} {edge}" for _i, _k, member, edge in res.edges)
+    what = ", ".join(f"{name} at {n}" for name, n in sorted(where.items())) or "no contact"
+    if synthesized:
+        key = ("change synthesis.path_direction (toward the lengthwise direction keeps the path off a tooth top) or "
+               "shorten synthesis.semi_major_axis")
+    else:
+        key = (f"the given settings face_milling.pinion_{_PINION_SIDE[side]}.machine do not keep the bearing inside; "
+               f"leave face_milling.pinion_{_PINION_SIDE[side]} out to have the pinion synthesized, or add a "
+               "[synthesis] section")
+    return [f"{side} side: the bearing runs off the flank at {n_off} of {te.size} TCA positions (edge contact: "
+            f"{what}); {key}"]
+
+
+def te_level(res, z1: int, window: float = 0.4) -> float | None:
+    """Parabolic TE level (arcsec) of a TCA: a least-squares parabola through the TE of the pair in contact within
+    ``window`` of half a mesh cycle around the mean contact, evaluated at half a mesh cycle (pi/z1), as
+    -a2 (pi/z1)^2. ``None`` with fewer than three contact positions in the window."""
+    half = np.pi / z1
+    phi = np.asarray(res.phi1) - float(res.phi1_mean)
+    te = np.asarray(res.te) / ARCSEC
+    near = np.isfinite(te) & (np.abs(phi) <= window * half)
+    if np.sum(near) < 3:
+        return None
+    a2 = np.polyfit(phi[near], te[near], 2)[0]
+    return float(-a2 * half ** 2)
+
+
+def te_level_warnings(res, side: str, design_arcsec: float | None, z1: int) -> list[str]:
+    """The parabolic TE level of the TCA (:func:`te_level`) against the designed one (``synthesis.te_magnitude``).
+
+    The local synthesis prescribes the second derivative of the TE at the mean contact, i.e. a parabola that drops
+    by the design level over half a mesh cycle on each side. Warns when the level fitted to the TCA is more than
+    :data:`TE_LEVEL_TOL` away from the design, or when there is no TE curve to fit.
+    """
+    if design_arcsec is None or not design_arcsec > 0:
+        return []
+    level = te_level(res, z1)
+    if level is None:
+        return [f"{side} side: too few TCA positions with contact near the mean contact to compare the TE level with "
+                f"the designed {design_arcsec:.3g} arcsec"]
+    dev = level / design_arcsec - 1.0
+    if abs(dev) <= TE_LEVEL_TOL:
+        return []
+    return [f"{side} side: parabolic TE level {level:.3g} arcsec against the designed {design_arcsec:.3g} arcsec "
+            f"({dev:+.0%}, allowed +-{TE_LEVEL_TOL:.0%}); change synthesis.te_magnitude"]
+
+
+def tca_checks(res, side: str, synthesized: bool, design_arcsec: float | None = None, z1: int = 0) -> list[str]:
+    """All TCA checks of one side (:func:`bearing_warnings`, :func:`te_level_warnings`; z1 the pinion teeth)."""
+    if res is None:
+        return []
+    return bearing_warnings(res, side, synthesized) + (te_level_warnings(res, side, design_arcsec, z1) if z1 else [])
