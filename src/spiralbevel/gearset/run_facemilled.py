@@ -8,17 +8,19 @@ from . import outputs
 from .partial import attempt, mark_failed
 
 
-def run_facemilled(spec, blank, out, steps, report, summary):
-    """Set up cutters and settings, generate the four flanks, and write the requested outputs into ``out``."""
+def run_facemilled(gs, out, steps, report, summary):
+    """Set up the cutters and settings of the gear set ``gs``, generate its four flanks, and write the requested
+    outputs into ``out``."""
+    spec, blank = gs.design, gs.blank
     o = spec.output
     n_face, n_profile = o.grid
     with steps.step("cutters and machine settings"):
-        setups, synth = fm.setup_flanks(spec, blank, with_synthesis=True)
+        setups, synth = gs.setups, gs.synthesis
         if synth:
             report["synthesis"] = {name: r.summary() for name, r in synth.items()}
         cmc = {name: d for name, d in synth.items() if hasattr(d, "multipoint")}
     with steps.step("generated flanks and curvatures"):
-        grids = {k: st.flank.grid(n_face, n_profile) for k, st in setups.items()}
+        grids = gs.grids(n_face, n_profile)
         flanks, machines = fm.flank_report(setups, blank)
         report["flanks"] = flanks
         report["machine_settings"] = machines
@@ -28,7 +30,6 @@ def run_facemilled(spec, blank, out, steps, report, summary):
             rot = fm.tooth_rotation(blank, setups, m)
             cx, cc = grids[(m, Side.CONVEX)], grids[(m, Side.CONCAVE)]
             tooth[m] = ((cx.points, cx.normals), fm.rotate_grid(cc.points, cc.normals, rot))
-            report["flanks"][m.value]["concave"]["tooth_rotation_deg"] = float(rot * 180.0 / 3.141592653589793)
     with steps.step("tooth contact analysis"):
         from .tca import run_pair_tca
 

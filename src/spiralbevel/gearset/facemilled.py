@@ -1,4 +1,4 @@
-"""Face-milled designs in the main job: cutters and machine settings per flank, generated flanks, tooth assembly."""
+"""Face-milled designs: cutters and machine settings per flank, generated flanks, tooth assembly."""
 
 from __future__ import annotations
 
@@ -101,19 +101,16 @@ def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK
     itself fails or the pinion flank does not cover the whole face.
     """
     from ..errors import NoContactError
-    from ..meshing.generated_surface import phased_for_pair
-    from ..meshing.kinematics import BevelPairKinematics
+    from ..meshing.pair import meshing_pair
     from ..meshing.tca import solve_tca
 
     try:   # the synthesized flank must cover the whole face (the grid of the report, the CAD and the TCA outline)
         pinion_flank.grid(9, 5, curvature=False)
     except GeometryError:
         return n_positions
-    kin = BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
-    c1, c2 = phased_for_pair(pinion_flank, gear_flank)
-    start = np.r_[c1.reference_params, c2.reference_params, 0.0]
+    pair = meshing_pair(pinion_flank, gear_flank, blank)
     try:
-        res = solve_tca(c1, c2, kin, n_positions=n_positions, start=start)
+        res = solve_tca(pair.pinion, pair.gear, pair.kinematics, n_positions=n_positions, start=pair.start)
     except (NoContactError, ConvergenceError):
         return n_positions
     return int(np.sum(~np.isfinite(res.te) | res.edge_contact))
@@ -450,6 +447,11 @@ def flank_report(setups, blank=None):
         if fit is not None:
             flanks[m.value][s.value]["design_vs_achieved"] = fit.to_dict()
             flanks[m.value][s.value]["checks"] = flank_checks(fit, m, s)
+    if blank is not None:   # the concave flank of each tooth turned to the mean normal thickness (tooth_rotation)
+        for m in MEMBERS:
+            if (m, Side.CONVEX) in setups and (m, Side.CONCAVE) in setups:
+                rot = tooth_rotation(blank, setups, m)
+                flanks[m.value]["concave"]["tooth_rotation_deg"] = float(rot * 180.0 / 3.141592653589793)
     if blank is not None and "pinion" in flanks and {"concave", "convex"} <= set(flanks["pinion"]):
         from ..design.blank_checks import achieved_undercut
 

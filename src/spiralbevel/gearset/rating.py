@@ -13,7 +13,7 @@ from ..conventions import Member, Side
 from ..errors import DesignError, Problem
 from ..io.design_schema import DesignFile
 
-__all__ = ["rating_input_from_design", "rating_from_design", "rating_report", "rating_ltca_report",
+__all__ = ["rating_input_from_design", "rating_from_design", "rating_section", "rating_report", "rating_ltca_report",
            "rating_fe_root_report", "fe_root_stress_from_job"]
 
 # RatingInput field -> design-file path
@@ -87,12 +87,17 @@ def rating_from_design(spec: DesignFile, blank=None):
     return rate_iso10300(blank, rating_input_from_design(spec, blank))
 
 
+def rating_section(res) -> dict:
+    """The ``rating`` section of report.json of a :class:`~spiralbevel.rating.RatingResult`."""
+    return {"standard": "ISO 10300:2014 Method B1", **res.to_dict()}
+
+
 def rating_report(spec: DesignFile, blank, report: dict, summary) -> None:
     """Add the ``rating`` section to ``report`` when the design has ``[rating]`` (hook of the run driver)."""
     if spec.rating is None:
         return
     res = rating_from_design(spec, blank)
-    report["rating"] = {"standard": "ISO 10300:2014 Method B1", **res.to_dict()}
+    report["rating"] = rating_section(res)
     summary.highlights.append(f"rating (ISO 10300 B1): S_H = {res['S_H']:.3f}, S_F1 = {res['S_F1']:.3f}, "
                               f"S_F2 = {res['S_F2']:.3f}")
 
@@ -174,7 +179,7 @@ def fe_root_stress_from_job(spec: DesignFile, blank, setups, ltca_result, fe_opt
     """FE root stress of pinion and gear (:func:`~spiralbevel.rating.fe_root_stress.fe_root_stress`) under the
     contact forces of the job's LTCA: the flank grids of the LTCA's FE model (``[ltca] flank_grid``) with
     ``FE_ROOT_FILLET_ROWS`` fillet rows below, in the same (phased) member frames."""
-    from ..meshing.generated_surface import phased_for_pair
+    from ..meshing.pair import meshing_pair
     from ..rating.fe_root_stress import fe_root_stress
     from .facemilled import tooth_rotation
     from .ltca import _tooth_grids
@@ -183,7 +188,8 @@ def fe_root_stress_from_job(spec: DesignFile, blank, setups, ltca_result, fe_opt
     lt = spec.ltca
     assert lt is not None  # called after the LTCA of the job, which needs [ltca]
     s1, s2 = SIDES[lt.side]
-    c1, c2 = phased_for_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank)
+    pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
+    c1, c2 = pair.pinion, pair.gear
     nf, npf = lt.flank_grid
     # the last fillet row and the first blade row of ToothFlank.grid coincide: keep one of them
     grids = {k: np.delete(st.flank.grid(nf, npf, n_fillet=FE_ROOT_FILLET_ROWS, curvature=False).points,
