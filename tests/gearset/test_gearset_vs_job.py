@@ -58,8 +58,10 @@ def _run(gs, out):
 def job(request, tmp_path_factory):
     """(GearSet, the report.json its report() wrote, the directory) of a bundled design: the same code path as
     ``spiralbevel run``."""
-    # the plain log-spiral pair also writes its STL files (under a second): to_stl is checked against them
-    spec = _fast(load_design(bundled_designs()[request.param]), stl=request.param == "aviation_23x65_logspiral")
+    # the plain log-spiral pair also writes its STL files, forging draft and tool paths (a few seconds): to_stl is
+    # checked against them and the draft and tool-path sections against the schema
+    ls = request.param == "aviation_23x65_logspiral"
+    spec = _fast(load_design(bundled_designs()[request.param]), stl=ls, draft=ls, toolpaths=ls)
     gs = sb.GearSet.from_dict(spec.model_dump(mode="json"))
     out = tmp_path_factory.mktemp(request.param) / "out"
     return gs, _run(gs, out), out
@@ -93,6 +95,20 @@ def _check_logspiral(gs, report, out):
     if gs.design.output.stl:
         for path in gs.to_stl(out.parent / "api"):
             assert path.read_bytes() == (out / path.name).read_bytes(), path.name
+        pytest.importorskip("OCP")   # STEP needs the 'cad' extra
+        from spiralbevel.conventions import Member
+        from spiralbevel.io.step import read_step_surfaces
+
+        paths = gs.to_step(out.parent / "api", whole_gear=False)
+        assert sorted(p.name for p in paths) == ["gear_tooth.step", "pinion_tooth.step"]
+        tooth, _, _ = gs._tooth_grids()
+        for member in (Member.PINION, Member.GEAR):
+            (convex, _), (concave, _) = tooth[member]
+            faces = read_step_surfaces(out.parent / "api" / f"{member.value}_tooth.step")
+            # the flank faces interpolate the flank grid (as the job writes them): at the nodes within 1e-4 mm, the
+            # bound of the STEP tests
+            assert max(faces[0].distance(convex.reshape(-1, 3)).max(),
+                       faces[1].distance(concave.reshape(-1, 3)).max()) < 1e-4
     for method in ("machine_summary", "sensitivity", "easeoff", "measurement_grid", "ltca"):
         with pytest.raises(DesignError, match="needs a face-milled design"):
             getattr(gs, method)()
@@ -100,7 +116,7 @@ def _check_logspiral(gs, report, out):
 
 def test_gearset_matches_the_job(job):
     gs, report, out = job
-    assert report["title"] == gs.title
+    assert report["design"]["title"] == gs.title
     if gs.kind == "face-milled":
         _check_facemilled(gs, report, out)
     else:
@@ -117,7 +133,7 @@ def test_gearset_from_basic_data_matches_the_job(tmp_path):
     gs = sb.GearSet(_fast(gs.design))
     out = tmp_path / "out"
     report = _run(gs, out)
-    assert report["title"] == "23/65 from basic data"
+    assert report["design"]["title"] == "23/65 from basic data"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         _check_facemilled(gs, report, out)
@@ -131,3 +147,28 @@ def test_bad_basic_data_names_the_key():
                                    mean_spiral_angle=30.0)
     with pytest.raises(DesignError, match="side"):
         sb.GearSet.from_design("aviation_23x65_facemilled").tca("sideways")
+
+
+def test_report_matches_the_schema(job):
+    jsonschema = pytest.importorskip("jsonschema")
+    from spiralbevel.io.report import report_schema
+
+    schema = report_schema()
+    jsonschema.Draft202012Validator.check_schema(schema)
+    jsonschema.validate(job[1], schema, cls=jsonschema.Draft202012Validator)
+
+
+def test_schema_rejects_the_old_conventions(job):
+    jsonschema = pytest.importorskip("jsonschema")
+    from spiralbevel.io.report import report_schema
+
+    v = jsonschema.Draft202012Validator(report_schema())
+    report = job[1]
+    for path, key, value in ((("blank",), "units", {"delta1": "deg"}), ((), "blank_warnings", []),
+                             ((), "title", "duplicate of design.title"), (("blank", "pinion"), "delta1_rad", 0.3)):
+        bad = json.loads(json.dumps(report))
+        node = bad
+        for p in path:
+            node = node[p]
+        node[key] = value
+        assert not v.is_valid(bad), key

@@ -420,6 +420,7 @@ def flank_report(setups, blank=None):
     """``flanks`` and ``machine_settings`` report sections (degrees, mm, 1/mm); with the blank, each flank's design
     against achieved mean-point angles and root position (``design_vs_achieved``)."""
     from ..generation.basic_settings_solve import flank_fit
+    from .units import MACHINE_SETTING_UNITS, suffixed
 
     flanks, machines = {}, {}
     for (m, s), st in setups.items():
@@ -431,12 +432,13 @@ def flank_report(setups, blank=None):
             "pressure_angle_root_deg": math.degrees(mp.pressure_angle_root),
             "hand": "RH" if mp.hand_sign > 0 else "LH",
             "k1_per_mm": mp.k1, "k2_per_mm": mp.k2, "meshing_residual": res,
-            "surface_parameters": {"u_mm": mp.u, "theta_rad": mp.theta, "psi_c_rad": mp.psi_c},
+            "surface_parameters": {"u_mm": mp.u, "theta_deg": math.degrees(mp.theta),
+                                   "psi_c_deg": math.degrees(mp.psi_c)},
         }
         c = st.cutter
         machines.setdefault(m.value, {})[s.value] = {
             "source": st.source,
-            "settings": st.settings.to_dict(degrees=True),
+            "settings": suffixed(st.settings.to_dict(degrees=True), MACHINE_SETTING_UNITS),
             "cutter": {"blade": c.blade.value, "point_radius_mm": c.point_radius,
                        "blade_angle_deg": math.degrees(c.blade_angle), "point_width_mm": c.point_width,
                        "edge_radius_mm": c.edge_radius,
@@ -464,5 +466,4 @@ def flank_report(setups, blank=None):
         for side, d in sides.items():
             for text in d.get("checks", ()):
                 warnings.warn(f"{m_name} {side}: {text}", DesignWarning, stacklevel=2)
-    units = {"settings": "mm; cradle_angle and machine_root_angle in deg; ratio_of_roll dimensionless"}
-    return flanks, dict(machines, units=units)
+    return flanks, machines

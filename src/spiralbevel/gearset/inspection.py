@@ -18,7 +18,7 @@ def easeoff_maps(blank, setups, out, plots: bool, return_maps: bool = False):
     from ..meshing.easeoff import easeoff
 
     kin = pair_kinematics(blank)
-    section: dict[str, Any] = {"units": "mm; positive = clearance (material removed from the pinion)"}
+    section: dict[str, Any] = {"sign": "positive = clearance (material removed from the pinion)"}
     files: list = []
     maps: dict[str, Any] = {}
     for name, (s1, s2) in SIDES.items():

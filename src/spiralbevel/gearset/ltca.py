@@ -86,10 +86,11 @@ def run_ltca(blank, setups, lt):
         raise NoContactError(f"loaded TCA, {lt.side} side: no contact at any of the {lt.positions} positions")
     ext = te_l[fin_l][np.argmax(np.abs(te_l[fin_l]))]
     section = {
-        "side": lt.side, "torque_Nm": T / 1000.0, "torque_for_approach_Nm": T_app / 1000.0,
+        "side": lt.side, "torque_N_m": T / 1000.0, "torque_for_approach_N_m": T_app / 1000.0,
         "approach_mm": 0.00635,
-        "max_loaded_transmission_error_arcsec": float(ext),
-        "max_unloaded_transmission_error_arcsec": float(te_u[fin_u][np.argmax(np.abs(te_u[fin_u]))]),
+        # the signed TE of largest magnitude over the cycle (negative: the gear lags), loaded and unloaded
+        "loaded_transmission_error_largest_magnitude_arcsec": float(ext),
+        "unloaded_transmission_error_largest_magnitude_arcsec": float(te_u[fin_u][np.argmax(np.abs(te_u[fin_u]))]),
         "loaded_te_peak_to_peak_arcsec": float(np.ptp(te_l[fin_l])),
         "status": "ok",
         "max_contact_pressure_N_per_mm2": float(np.nanmax(res.max_pressure)),
@@ -97,12 +98,11 @@ def run_ltca(blank, setups, lt):
         # edge) the pressure peaks at the edge and grows with the grid; the surface-contact peak is the converged one
         "max_contact_pressure_surface_N_per_mm2": _surface_peak(res, tca),
         "edge_contact_positions": int(np.sum(tca.status == ContactStatus.EDGE)),
-        # the pressure is that of the solved field on each contact's own grid (uniform-pressure cells)
-        "contact_grid": {"points": list(model.grid), "extents": "per position and pair: 1.25 x the Hertz ellipse of "
-                         "that contact at an approach of 4 x 0.00635 mm",
-                         "half_extents_at_mean_mm": _mean_extents(model)},
+        # the pressure is that of the solved field on each contact's own grid (uniform-pressure cells); the grid of
+        # each position and pair spans 1.25 x the Hertz ellipse of that contact at an approach of 4 x 0.00635 mm
+        "contact_grid": {"points": list(model.grid), "half_extents_at_mean_mm": _mean_extents(model)},
         "positions_with_two_pairs_loaded": int(np.sum(np.sum(res.load_share > 1e-3, axis=1) > 1)),
-        "pinion_rotation_rad": res.pinion_angles, "loaded_transmission_error_arcsec": te_l,
+        "pinion_rotation_deg": np.degrees(res.pinion_angles), "loaded_transmission_error_arcsec": te_l,
         "unloaded_transmission_error_arcsec": te_u, "load_share": res.load_share,
         "pair_names": list(res.pair_names),
         "material": {"youngs_modulus_N_per_mm2": lt.youngs_modulus, "poisson_ratio": lt.poisson_ratio},

@@ -52,7 +52,7 @@ class _Result:
         return _scalars(self.to_dict())
 
     def __repr__(self) -> str:
-        items = ", ".join(f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v!r}"
+        items = ", ".join(f"{k}={v + 0.0:.6g}" if isinstance(v, float) else f"{k}={v!r}"
                           for k, v in self._headline().items())
         return f"{type(self).__name__}({items})"
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..io.design_schema import DesignFile
-from .blank import require_no_offset
+from .blank import blank_section, require_no_offset
 from ..errors import DesignError
 from .partial import PartialLog
 from .problems import with_design_keys
@@ -70,7 +70,6 @@ def write_run(gearset, out, progress: bool = True) -> RunSummary:
 
 def _run(gs, out, summary, kind, steps, manifest):
     from ..io.atomic import OUTPUT_MARKER, atomic_directory
-    from ..io.dimension_sheet import dimension_sheet_json
     from ..io.report import write_report
 
     with atomic_directory(out, marker=OUTPUT_MARKER, manifest=manifest) as tmp, steps:
@@ -81,10 +80,8 @@ def _run(gs, out, summary, kind, steps, manifest):
         spec = gs.design
         report = {
             "spiralbevel_version": __version__,
-            "title": spec.title,
             "design": spec.model_dump(mode="json"),
-            "blank": dimension_sheet_json(blank),
-            "blank_warnings": list(getattr(blank, "warnings", ())),
+            "blank": blank_section(blank),
         }
         summary.highlights.append(
             f"blank: delta1 = {math.degrees(blank.delta1):.4f} deg, delta2 = {math.degrees(blank.delta2):.4f} deg, "

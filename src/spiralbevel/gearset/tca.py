@@ -59,7 +59,7 @@ def tca_section(name: str, res) -> dict:
     s1, s2 = SIDES[name]
     te = res.te_arcsec
     fin = np.isfinite(te)
-    edge_contacts = [{"position": i, "pinion_rotation_rad": float(res.phi1[i]), "pair": k, "member": m,
+    edge_contacts = [{"position": i, "pinion_rotation_deg": math.degrees(res.phi1[i]), "pair": k, "member": m,
                       "edge": e} for i, k, m, e in res.edges]
     if fin.sum() < MIN_TE_POSITIONS:
         msg = (f"TCA {name} side: contact of the real flanks at {int(fin.sum())} of {len(te)} positions (edge "
@@ -78,11 +78,11 @@ def tca_section(name: str, res) -> dict:
         "max_transmission_error_arcsec": res.te_max / ARCSEC,
         "min_transmission_error_arcsec": res.te_min / ARCSEC,
         "peak_to_peak_arcsec": res.peak_to_peak / ARCSEC,
-        "no_contact_positions_rad": [float(x) for x in res.phi1[~fin]],
-        "transfer_points_rad": [float(x) for x in np.atleast_1d(res.transfer_phi1)],
-        "edge_contact_positions_rad": [float(res.phi1[i]) for i in edge],
+        "no_contact_positions_deg": [math.degrees(x) for x in res.phi1[~fin]],
+        "transfer_points_deg": [math.degrees(x) for x in np.atleast_1d(res.transfer_phi1)],
+        "edge_contact_positions_deg": [math.degrees(res.phi1[i]) for i in edge],
         "semi_major_axis_mean_mm": _finite_or_none(np.max(res.semi_axes[len(te) // 2])),
-        "pinion_rotation_rad": res.phi1[fin], "transmission_error_arcsec": te[fin],
+        "pinion_rotation_deg": np.degrees(res.phi1[fin]), "transmission_error_arcsec": te[fin],
     }
 
 
@@ -104,8 +104,8 @@ def misalignment_sensitivity(blank, setups, side: str = "drive", n_positions: in
     """TE level and contact-path shift of one side for each misalignment of :data:`SENSITIVITY`.
 
     The shift is that of the gear contact point at the mean position, in the pitch-generatrix coordinates of the
-    gear's blank outline: ``dR`` along the face (toward the heel > 0) and ``dh`` along the profile (toward the top > 0),
-    mm. Returns a report section (``{"aligned": ..., name: {...}}``).
+    gear's blank outline (``contact_R_mm``, ``contact_h_mm`` of the aligned pair): along the face (toward the heel
+    > 0) and along the profile (toward the top > 0), mm. Returns a report section (``{"aligned": ..., name: {...}}``).
     """
     from ..meshing.misalignment import Misalignment
 
@@ -122,9 +122,10 @@ def misalignment_sensitivity(blank, setups, side: str = "drive", n_positions: in
         pt = res.point2[mid, list(res.pairs).index(0)] @ c2._R  # gear member frame, unrotated flank
         R, h = outline.Rh(pt[2], math.hypot(pt[0], pt[1]))
         return {"peak_to_peak_arcsec": res.peak_to_peak / ARCSEC if np.any(fin) else None,
-                "edge_contact_positions": int(np.sum(res.edge_contact)), "R": float(R), "h": float(h)}
+                "edge_contact_positions": int(np.sum(res.edge_contact)), "contact_R_mm": float(R),
+                "contact_h_mm": float(h)}
 
-    out = {"side": side, "units": {"shift": "mm", "te": "arcsec"}}
+    out = {"side": side}
     try:
         base = study(None)
     except (NoContactError, ConvergenceError) as err:
@@ -134,10 +135,10 @@ def misalignment_sensitivity(blank, setups, side: str = "drive", n_positions: in
         try:
             r = study(Misalignment(**{key: value}))
         except (NoContactError, ConvergenceError) as err:
-            out[name] = {"value": shown, "unit": unit, "error": str(err)}
+            out[name] = {f"value_{unit}": shown, "error": str(err)}
             continue
-        out[name] = {"value": shown, "unit": unit, "peak_to_peak_arcsec": r["peak_to_peak_arcsec"],
-                     "contact_shift_along_face_mm": r["R"] - base["R"],
-                     "contact_shift_along_profile_mm": r["h"] - base["h"],
+        out[name] = {f"value_{unit}": shown, "peak_to_peak_arcsec": r["peak_to_peak_arcsec"],
+                     "contact_shift_along_face_mm": r["contact_R_mm"] - base["contact_R_mm"],
+                     "contact_shift_along_profile_mm": r["contact_h_mm"] - base["contact_h_mm"],
                      "edge_contact_positions": r["edge_contact_positions"]}
     return out

@@ -198,6 +198,11 @@ class TCAResult:
         """Peak-to-peak TE of the contact envelope over positions with contact and the transfer points, rad."""
         return self.te_max - self.te_min
 
+    @property
+    def peak_to_peak_arcsec(self) -> float:
+        """:attr:`peak_to_peak` in arcsec (the unit of :meth:`summary` and of the reports)."""
+        return self.peak_to_peak / ARCSEC
+
     def summary(self) -> str:
         n = len(self.phi1)
         counts = {s.name: int(np.sum(self.status == s)) for s in ContactStatus}
