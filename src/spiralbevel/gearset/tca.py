@@ -125,7 +125,7 @@ def misalignment_sensitivity(blank, setups, side: str = "drive", n_positions: in
                 "edge_contact_positions": int(np.sum(res.edge_contact)), "contact_R_mm": float(R),
                 "contact_h_mm": float(h)}
 
-    out = {"side": side}
+    out: dict[str, Any] = {"side": side}
     try:
         base = study(None)
     except (NoContactError, ConvergenceError) as err:

@@ -2,9 +2,9 @@
 
 Values are plain JSON: floats, lists, dicts. Units are part of the names (``_mm``, ``_deg``, ``_arcsec``,
 ``_N_per_mm2``, ``_N_m``; dimensionless names bare), angles in degrees; the JSON Schema shipped with the package
-(:func:`report_schema`) states the layout. numpy scalars and arrays are converted. JSON has no NaN: a value that does not exist (for example the TE of a tooth
-pair at a position where it has no contact) is written as ``null``; infinities (the contact ellipse of a line
-contact) likewise.
+(:func:`report_schema`) states the layout. numpy scalars and arrays are converted. JSON has no NaN: a value that
+does not exist (for example the TE of a tooth pair at a position where it has no contact) is written as ``null``;
+infinities (the contact ellipse of a line contact) likewise.
 """
 
 from __future__ import annotations
