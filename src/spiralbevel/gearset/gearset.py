@@ -253,6 +253,12 @@ class GearSet:
         positions : int, optional
             Mesh positions (default ``[ltca] positions``).
 
+        Returns
+        -------
+        LTCA
+
+        Notes
+        -----
         Options not given here come from the design's ``[ltca]`` section (or its defaults).
         """
         from ..io.design_schema import LTCASpec
