@@ -36,18 +36,18 @@ def main(out: Path) -> dict:
 
     # --8<-- [start:tca]
     # 3. TCA of the drive side: a result object in arcsec and degrees; .plot() returns a matplotlib Figure.
-    drive = gs.tca("drive")
+    drive = gs.tca("drive", positions=21)            # 21 pinion positions over one mesh cycle
     print(drive)
     drive.plot().savefig(out / "gearset_tca_drive.png", dpi=80)
     # the same under a misalignment given in mm and degrees
-    tilted = gs.tca("drive", misalignment={"shaft_angle": 0.05})
+    tilted = gs.tca("drive", misalignment={"shaft_angle": 0.05}, positions=21)
     print(f"TE peak to peak {drive.peak_to_peak_arcsec:.2f} arcsec aligned, "
           f"{tilted.peak_to_peak_arcsec:.2f} arcsec with the shaft angle 0.05 deg larger")
     # --8<-- [end:tca]
 
     # --8<-- [start:more]
     # 4. The main job's misalignment study and the ease-off; to_dict() is the matching report.json section.
-    sensitivity = gs.sensitivity()
+    sensitivity = gs.sensitivity(positions=21)
     print(sensitivity)
     easeoff = gs.easeoff()
     print(easeoff)
