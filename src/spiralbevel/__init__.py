@@ -22,9 +22,11 @@ _LAZY = {
     "BlankInput": "design.blank", "BevelBlank": "design.blank", "compute_blank": "design.blank",
     # face milling (seeds 001, 003)
     "HeadCutter": "machine.cutter", "Blade": "machine.cutter", "MachineSettings": "machine.settings",
+    "UniversalSettings": "machine.universal", "UniversalGenerator": "machine.universal",
     "generate_flank": "generation.flank", "ToothFlank": "generation.flank",
     # meshing
-    "BevelPairKinematics": "meshing.kinematics", "solve_envelope": "meshing.envelope",
+    "BevelPairKinematics": "meshing.kinematics", "HypoidPairKinematics": "meshing.hypoid_kinematics",
+    "solve_envelope": "meshing.envelope",
     "compare_conjugate": "meshing.conjugate", "solve_tca": "meshing.tca", "TCAResult": "meshing.tca_result",
     "Misalignment": "meshing.misalignment", "contact_ellipse": "meshing.ellipse",
     "CombinedMotionCurve": "meshing.motion_curves", "GeneratedSurface": "meshing.generated_surface",

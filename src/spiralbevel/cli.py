@@ -27,6 +27,7 @@ from typing import Optional
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from .errors import (ConvergenceError, DesignError, MissingDependencyError, NoContactError, SpiralBevelError,
@@ -45,8 +46,46 @@ app = typer.Typer(
     no_args_is_help=True,
     help="spiralbevel: design, manufacture and contact analysis of spiral bevel gears.",
 )
-console = Console()
-err_console = Console(stderr=True, soft_wrap=True)
+
+
+#: console width when the stream is not a terminal: wide enough that no line or table wraps (a pipe or a log file gets
+#: one line per message)
+PLAIN_WIDTH = 10_000
+
+
+def _make_console(stderr: bool = False) -> Console:
+    """A rich console that never turns user text into emoji; plain and unwrapped when its stream is not a terminal
+    (no colour codes, no wrapping mid-sentence)."""
+    stream = sys.stderr if stderr else sys.stdout
+    tty = bool(getattr(stream, "isatty", lambda: False)())
+    if tty:
+        return Console(stderr=stderr, emoji=False, highlight=False, soft_wrap=stderr)
+    return Console(stderr=stderr, emoji=False, highlight=False, soft_wrap=True, width=PLAIN_WIDTH,
+                   color_system=None, force_terminal=False)
+
+
+console = _make_console()
+err_console = _make_console(stderr=True)
+
+
+def _reset_consoles() -> None:
+    """Re-create both consoles for the streams of this invocation (a test runner swaps ``sys.stdout``)."""
+    global console, err_console
+    console, err_console = _make_console(), _make_console(stderr=True)
+
+
+def _version_callback(value: bool):
+    if value:
+        from . import __version__
+
+        sys.stdout.write(f"spiralbevel {__version__}\n")
+        raise typer.Exit()
+
+
+@app.callback()
+def _main(version: bool = typer.Option(False, "--version", callback=_version_callback, is_eager=True,
+                                       help="Print the version and exit.")):
+    """spiralbevel: design, manufacture and contact analysis of spiral bevel gears."""
 
 DesignArg = typer.Argument(None, help="Design file (TOML), or the name of a bundled example (see "
                                        "'spiralbevel examples'). Default: the bundled aviation 23/65 log-spiral set.")
@@ -65,6 +104,21 @@ def _load(design):
     return load_design(design)
 
 
+def _design_text(design) -> str:
+    """The TOML text ``_load`` read (empty when it cannot be read: its error was reported already)."""
+    from .io.design_file import bundled_designs, default_design_text
+
+    if design is None:
+        return default_design_text()
+    p = Path(design)
+    if not p.exists() and len(p.parts) == 1 and str(design).removesuffix(".toml") in bundled_designs():
+        p = bundled_designs()[str(design).removesuffix(".toml")]
+    try:
+        return p.read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeError):
+        return ""
+
+
 def _guard(fn):
     """Turn spiralbevel errors into a clean message and exit code 2 (input) or 1 (computation); print each design
     warning once, after the command."""
@@ -78,6 +132,7 @@ def _guard(fn):
 
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
+        _reset_consoles()
         main = threading.current_thread() is threading.main_thread() and hasattr(signal, "SIGTERM")
         previous = signal.signal(signal.SIGTERM, on_sigterm) if main else None
         with warnings.catch_warnings(record=True) as caught:
@@ -130,16 +185,19 @@ def run(
     design: Optional[Path] = DesignArg,
     out: Path = typer.Option(Path("out"), "-o", "--out", help="Output directory (written whole or not at all)."),
     quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar."),
+    cache_dir: Optional[Path] = typer.Option(None, "--cache-dir", help="Directory of the FE compliance cache of the "
+                                             "loaded TCA (default $SPIRALBEVEL_CACHE, else ~/.cache/spiralbevel)."),
 ):
     """Compute everything the design asks for and write report.json, plots, STL, STEP and tool paths.
 
     OUT must be new, empty, or a previous spiralbevel output (it holds the manifest .spiralbevel-output.json); any
     other directory is refused (exit 2). OUT is replaced whole, or not at all."""
+    _use_cache_dir(cache_dir)
     spec = _load(design)
     from .job import run_design
 
     summary = run_design(spec, out, progress=not quiet)
-    console.print(f"[green]wrote[/] {out}/ ({len(summary.files)} files)")
+    console.print(f"[green]wrote[/] {escape(str(out))}/ ({len(summary.files)} files)")
     for line in summary.highlights:
         console.print(f"  {line}", markup=False, highlight=False)
     if summary.partial.failed:
@@ -171,15 +229,15 @@ def blank(
             from .io.atomic import atomic_write_text
 
             atomic_write_text(output, text + "\n")
-            console.print(f"[green]wrote[/] {output}")
+            console.print(f"[green]wrote[/] {escape(str(output))}")
         else:
             sys.stdout.write(text + "\n")
         return
-    table = Table(title=f"Dimension sheet (ISO 23509): {spec.title}")
+    table = Table(title=f"Dimension sheet (ISO 23509): {escape(spec.title)}")
     for col in ("symbol", "quantity", "unit", "pinion", "gear"):
         table.add_column(col, justify="right" if col in ("pinion", "gear") else "left")
     for sym, desc, unit, v1, v2 in dimension_sheet_rows(result):
-        table.add_row(sym, desc, unit, _fmt(v1), _fmt(v2))
+        table.add_row(*(escape(t) for t in (sym, desc, unit, _fmt(v1), _fmt(v2))))
     console.print(table)
 
 
@@ -201,7 +259,7 @@ def rate(
             from .io.atomic import atomic_write_text
 
             atomic_write_text(output, text + "\n")
-            console.print(f"[green]wrote[/] {output}")
+            console.print(f"[green]wrote[/] {escape(str(output))}")
         else:
             sys.stdout.write(text + "\n")
         return
@@ -211,7 +269,8 @@ def rate(
     tables: dict[str, Table] = {}
     for section, sym, desc, unit, value in res.rows():
         if section not in tables:
-            t = tables[section] = Table(title=f"{titles[section]}: {spec.title}" if not tables else titles[section])
+            title = f"{titles[section]}: {escape(spec.title)}" if not tables else titles[section]
+            t = tables[section] = Table(title=title)
             for col in ("symbol", "quantity", "unit", "value"):
                 t.add_column(col, justify="right" if col == "value" else "left")
         tables[section].add_row(sym, desc, unit, f"{value:.4f}")
@@ -223,17 +282,29 @@ def rate(
         console.print(f"note: {note}", markup=False, highlight=False)
 
 
+#: the design ``spiralbevel machine`` summarizes when none is named (the bundled default is a log-spiral set, which has
+#: no machine settings)
+MACHINE_DEFAULT = "aviation_23x65_facemilled"
+
+
 @app.command()
 @_guard
-def machine(design: Optional[Path] = DesignArg):
+def machine(design: Optional[Path] = typer.Argument(
+        None, help=f"Face-milled design file, or a bundled example's name. Default: the bundled {MACHINE_DEFAULT}.")):
     """Print the machine summary sheet (cutter and cradle settings per member and side) of a face-milled design."""
     from .gearset.blank import blank_from_design
     from .gearset.facemilled import setup_flanks
 
-    spec = _load(design)
+    spec = _load(MACHINE_DEFAULT if design is None else design)
     if spec.flank.kind != "face-milled":
         raise DesignError.single("flank.kind", spec.flank.kind, "'face-milled' for a machine summary", "-")
-    setups = setup_flanks(spec, blank_from_design(spec))
+    blank = blank_from_design(spec)
+    if blank.a != 0.0:   # a hypoid: basic settings at each member's mean cone distance, pinion by hypoid synthesis
+        from .job.hypoid import setup_hypoid_flanks
+
+        setups = setup_hypoid_flanks(spec, blank)
+    else:
+        setups = setup_flanks(spec, blank)
     for (m, s), st in setups.items():
         table = Table(title=f"{m.value} {s.value} ({st.source})")
         table.add_column("setting")
@@ -260,13 +331,20 @@ def correct(
                                                   "(default: radial_setting, cradle_angle, machine_root_angle, "
                                                   "ratio_of_roll, modified_roll_2C, modified_roll_6D)."),
     regularization: float = typer.Option(0.0, "--regularization", help="Tikhonov parameter (relative), >= 0."),
+    write: Optional[Path] = typer.Option(None, "--write", help="Write a corrected design file here (every flank's "
+                                         "cutter and settings explicit). A new file: an existing file is replaced "
+                                         "only if 'correct --write' wrote it."),
 ):
     """Corrective machine settings from measured flank deviations (least squares on the settings' sensitivities)."""
-    from .job.correction import correct_from_measurement, correction_rows
+    from .job.correction import (check_write_target, correct_from_measurement, corrected_design_text,
+                                 correction_rows, verify_corrected_design)
 
+    if write is not None:
+        check_write_target(write, design if design is not None and Path(design).exists() else None)
     spec = _load(design)
     params = [p.strip() for p in parameters.split(",")] if parameters else None
-    st, res = correct_from_measurement(spec, member, side, measured, params, regularization)
+    st, res, setups = correct_from_measurement(spec, member, side, measured, params, regularization,
+                                               with_setups=True)
     table = Table(title=f"Corrected settings, {member} {side}: rms {1000 * res.rms_before:.2f} -> "
                         f"{1000 * res.rms_after:.2f} um (condition number {res.condition_number_used:.3g})")
     for col in ("setting", "nominal", "corrected", "change", "unit"):
@@ -276,18 +354,27 @@ def correct(
     console.print(table)
     if res.not_identifiable:
         console.print(f"[yellow]not identifiable from this measurement (left unchanged):[/] "
-                      f"{', '.join(res.not_identifiable)}")
+                      f"{escape(', '.join(res.not_identifiable))}")
+    if write is not None:
+        from .io.atomic import atomic_write_text
+
+        text = corrected_design_text(_design_text(design), setups, member, side, res, source=str(design))
+        verify_corrected_design(text, setups, member, side, res)
+        atomic_write_text(write, text)
+        console.print(f"[green]wrote[/] {escape(str(write))}")
 
 
 @app.command()
 @_guard
 def sweep(
-    design: Path = typer.Argument(..., help="Face-milled design file or bundled example name."),
+    design: Path = typer.Argument(..., help="Face-milled design file, or a log-spiral one with [crowning] (the side of "
+                                  "its crowned pinion flank), or a bundled example name."),
     pinion_axial: Optional[str] = typer.Option(None, help="Delta A1 values, mm: 'v1,v2,...' or 'start:stop:count'."),
     gear_axial: Optional[str] = typer.Option(None, help="Delta A2 values, mm."),
     offset: Optional[str] = typer.Option(None, help="Delta E values, mm."),
     shaft_angle: Optional[str] = typer.Option(None, help="Delta gamma values, deg."),
-    side: str = typer.Option("drive", help="drive or coast"),
+    side: Optional[str] = typer.Option(None, help="drive or coast (default: drive; for a log-spiral design the side "
+                                       "of its crowned pinion flank)"),
     scheduler: Optional[str] = typer.Option(None, help="'sequential', or a dask scheduler address "
                                             "(tcp://host:port); default: dask's local processes if installed."),
     output: Optional[Path] = typer.Option(None, "--output", help="Write the records as JSON to this file."),
@@ -297,7 +384,7 @@ def sweep(
 
     texts = {"pinion_axial": pinion_axial, "gear_axial": gear_axial, "offset": offset, "shaft_angle": shaft_angle}
     grid = {k: parse_values(k, v) for k, v in texts.items() if v is not None}
-    if side not in ("drive", "coast"):
+    if side not in (None, "drive", "coast"):
         raise DesignError.single("--side", side, "'drive' or 'coast'", "-")
     check_scheduler(scheduler)
     if output is not None:
@@ -305,6 +392,10 @@ def sweep(
 
         check_output_file(output)
     spec = _load(design)
+    if side is None:
+        from .job.sweep import default_side
+
+        side = default_side(spec)
     records = misalignment_sweep(spec, grid, side=side, scheduler=scheduler)
     table = Table(title=f"Misalignment sweep, {side} side ({len(records)} TCA runs)")
     for col in ("dA1 mm", "dA2 mm", "dE mm", "dgamma deg", "TE p-p arcsec", "contact R mm", "contact h mm", "edge"):
@@ -325,19 +416,37 @@ def sweep(
         atomic_write_text(output, dumps_report({"side": side, "units": {"pinion_axial": "mm", "gear_axial": "mm",
                                                 "offset": "mm", "shaft_angle": "deg", "te": "arcsec"},
                                                 "records": records}))
-        console.print(f"[green]wrote[/] {output}")
+        console.print(f"[green]wrote[/] {escape(str(output))}")
 
 
 @app.command()
 @_guard
 def check(design: Optional[Path] = DesignArg):
     """Validate a design file: its schema, the ISO blank, and the flanks it defines (without the analyses)."""
-    from .job.check import check_design
+    from .job.check import check_design, schema_and_design_problems
 
-    spec = _load(design)
+    try:
+        spec = _load(design)
+    except DesignError as err:
+        raise schema_and_design_problems(err, _design_text(design)) from None
     check_design(spec)
-    console.print(f"[green]ok[/] {spec.title}")
+    console.print(f"[green]ok[/] {escape(spec.title)}")
 
+
+def _use_cache_dir(cache_dir: Optional[Path]) -> None:
+    """``--cache-dir``: the FE cache of this process lives there (it sets ``$SPIRALBEVEL_CACHE``, which the cache reads
+    on every use)."""
+    if cache_dir is not None:
+        import os
+
+        if cache_dir.exists() and not cache_dir.is_dir():
+            raise DesignError.single("--cache-dir", str(cache_dir), "a directory (or a path that does not exist yet)",
+                                     "-")
+        os.environ["SPIRALBEVEL_CACHE"] = str(cache_dir)
+
+
+CacheDirOption = typer.Option(None, "--cache-dir", help="Cache directory (default $SPIRALBEVEL_CACHE, else "
+                                                        "~/.cache/spiralbevel).")
 
 cache_app = typer.Typer(no_args_is_help=True, help="The on-disk FE compliance cache of the loaded TCA "
                                                       "($SPIRALBEVEL_CACHE, default ~/.cache/spiralbevel).")
@@ -346,10 +455,11 @@ app.add_typer(cache_app, name="cache")
 
 @cache_app.command("info")
 @_guard
-def cache_info_cmd():
+def cache_info_cmd(cache_dir: Optional[Path] = CacheDirOption):
     """Where the cache is, how many entries and bytes it holds, and its size cap ($SPIRALBEVEL_CACHE_MAX_MB)."""
     from .meshing.ltca.fe_cache import cache_info
 
+    _use_cache_dir(cache_dir)
     info = cache_info()
     console.print(f"cache: {info['path']}", markup=False, highlight=False)
     console.print(f"  {info['entries']} entries, {info['bytes'] / 2**20:.1f} MB (cap {info['max_bytes'] / 2**20:.0f} "
@@ -358,10 +468,11 @@ def cache_info_cmd():
 
 @cache_app.command("clear")
 @_guard
-def cache_clear_cmd():
+def cache_clear_cmd(cache_dir: Optional[Path] = CacheDirOption):
     """Delete every cache entry (other files in the directory are left alone)."""
     from .meshing.ltca.fe_cache import cache_info, clear_cache
 
+    _use_cache_dir(cache_dir)
     n = clear_cache()
     console.print(f"removed {n} entries from {cache_info()['path']}", markup=False, highlight=False)
 
@@ -369,6 +480,7 @@ def cache_clear_cmd():
 @app.command()
 def examples():
     """List the bundled example designs (run one with 'spiralbevel run NAME')."""
+    _reset_consoles()
     from .io.design_file import bundled_designs, parse_design
 
     table = Table(title="Bundled example designs")
@@ -377,7 +489,7 @@ def examples():
     table.add_column("title")
     for name, path in bundled_designs().items():
         spec = parse_design(path.read_text(encoding="utf-8"), source=str(path))
-        table.add_row(name, spec.flank.kind, spec.title)
+        table.add_row(escape(name), escape(spec.flank.kind), escape(spec.title))
     console.print(table)
 
 

@@ -11,6 +11,7 @@ from spiralbevel.cli import app
 from spiralbevel.io.design_file import default_design_text
 
 runner = CliRunner()
+_CONSOLE: dict = {}
 
 
 @pytest.fixture(scope="module")
@@ -18,7 +19,18 @@ def default_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("run") / "out"
     result = runner.invoke(app, ["run", "-o", str(out), "-q"])
     assert result.exit_code == 0, result.output
+    _CONSOLE["output"] = result.output
     return out, json.loads((out / "report.json").read_text())
+
+
+def test_summary_names_a_failing_draft(default_run):
+    """The default log-spiral pair's pinion convex flank cannot leave an axial die: the console summary says so and
+    names every failing flank of report.json's draft section."""
+    _, report = default_run
+    failing = [k for k, v in report["draft"]["flanks"].items() if not v["passes"]]
+    assert "pinion_convex" in failing
+    line = next(ln for ln in _CONSOLE["output"].splitlines() if "forging draft" in ln)
+    assert "FAILS" in line and all(k.replace("_", " ") in line for k in failing)
 
 
 def test_default_run_writes_everything(default_run):

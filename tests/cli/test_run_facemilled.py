@@ -84,7 +84,9 @@ def test_machine_command_prints_summary():
 
 
 def test_machine_command_rejects_logspiral():
-    result = runner.invoke(app, ["machine"])
+    """A log-spiral design named explicitly is refused (it has no machine settings); with no design the command
+    summarizes the face-milled example instead (tests/cli/test_cli_polish.py)."""
+    result = runner.invoke(app, ["machine", "aviation_23x65_logspiral"])
     assert result.exit_code == 2 and "flank.kind" in result.output
 
 

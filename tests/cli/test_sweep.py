@@ -2,6 +2,8 @@
 
 import json
 
+import numpy as np
+
 import pytest
 from typer.testing import CliRunner
 
@@ -74,3 +76,40 @@ def test_cli_sweep_writes_json(tmp_path):
 def test_cli_sweep_bad_values():
     result = runner.invoke(app, ["sweep", "aviation_23x65_synthesized", "--offset", "a,b"])
     assert result.exit_code == 2 and "sweep values" in result.output
+
+
+def test_logspiral_sweep_on_the_crowned_side():
+    """A crowned log-spiral design is swept on the side of its crowned pinion flank (the CLI's default there): at
+    zero misalignment the contact sits at the gear's mean point (on the pitch cone at the mean cone distance, where the
+    crowning was designed) and the TE level is the design's te_level; a gear axial shift moves the pattern along the
+    face, as on the face-milled pair."""
+    from spiralbevel.conventions import Member, Side
+    from spiralbevel.job.blank import blank_from_design
+    from spiralbevel.job.logspiral import design_pair
+
+    spec = load_design(bundled_designs()["aviation_23x65_logspiral_forged"])
+    pair = design_pair(spec, blank_from_design(spec))
+    recs = misalignment_sweep(spec, {"gear_axial": [-0.05, 0.0, 0.05]}, side="coast", scheduler="sequential")
+    aligned = recs[1]
+    p = pair.mean_point(Member.GEAR, Side(spec.crowning.side).mate).point
+    d2 = pair.gear.pitch_angle
+    r, z = float(np.hypot(p[0], p[1])), float(p[2])
+    # the mean point from the pair's own recipe, projected the same way: 1 um (TCA's contact point tolerance)
+    assert aligned["mean_contact_R_mm"] == pytest.approx(r * np.sin(d2) + z * np.cos(d2), abs=1e-3)
+    assert aligned["mean_contact_h_mm"] == pytest.approx(r * np.cos(d2) - z * np.sin(d2), abs=1e-3)
+    # the crowning's TE target over one mesh cycle (te_level at the cycle ends): the mean-point synthesis meets it to
+    # 2.6 % here (7.79 arcsec for 8), the same shortfall as the job's own TCA of the mismatched pair
+    assert aligned["peak_to_peak_arcsec"] == pytest.approx(spec.crowning.te_level, rel=0.04)
+    R = [r["mean_contact_R_mm"] for r in recs]
+    assert (R[0] - R[1]) * (R[2] - R[1]) < 0 and abs(R[2] - R[0]) > 0.05
+
+
+def test_logspiral_sweep_cli_default_side_and_refusals():
+    result = runner.invoke(app, ["sweep", "aviation_23x65_logspiral_forged", "--gear-axial", "0", "--scheduler",
+                                 "sequential"])
+    assert result.exit_code == 0, result.output
+    assert "coast side" in result.output
+    result = runner.invoke(app, ["sweep", "aviation_23x65_logspiral_forged", "--gear-axial", "0", "--side", "drive"])
+    assert result.exit_code == 2 and "crowning.side" in result.output
+    result = runner.invoke(app, ["sweep", "aviation_23x65_logspiral", "--gear-axial", "0"])
+    assert result.exit_code == 2 and "line contact" in result.output and "[crowning]" in result.output

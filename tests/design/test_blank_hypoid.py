@@ -226,7 +226,7 @@ def test_cli_blank_shows_the_hypoid_sheet_and_run_stops_after_it(tmp_path):
     assert "Traceback" not in res.output and not (tmp_path / "out").exists()
 
 
-@pytest.mark.parametrize("argv", [["machine"], ["check"], ["rate"]], ids=["machine", "check", "rate"])
+@pytest.mark.parametrize("argv", [["check"], ["rate"]], ids=["check", "rate"])
 def test_other_commands_stop_on_a_hypoid_instead_of_ignoring_the_offset(tmp_path, argv):
     f = tmp_path / "hypoid.toml"
     rating = ("\n[rating]\npinion_torque = 300.0\npinion_speed = 1200.0\nsigma_Hlim = 1500.0\nsigma_Flim = 480.0\n"

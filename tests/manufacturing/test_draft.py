@@ -256,7 +256,7 @@ def test_plot_draft_draws_regions_and_both_boundaries(coords, tmp_path):
     res = draft_map(flank, domain, n_phi=21, n_psi=41)
     fig = plot_draft(res, coords=coords)
     ax = fig.axes[0]
-    assert len(ax.collections) >= 2  # the pass/fail mesh and the zero contour
+    assert len(ax.collections) >= 2  # the draft-angle mesh and the zero-draft contour
     dashed = [ln for ln in ax.lines if ln.get_linestyle() == "--"]
     assert len(dashed) == 1
     xs = dashed[0].get_xdata()

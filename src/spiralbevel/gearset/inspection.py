@@ -35,8 +35,9 @@ def easeoff_maps(blank, setups, out, plots: bool, return_maps: bool = False):
         if plots:
             from .outputs import save_figure
 
-            fig = eo.plot(kind="surface", title=f"Ease-off of the pinion {s1.value} flank against the conjugate of "
-                                                f"the gear {s2.value} flank ({name} side); + = clearance")
+            fig = eo.plot(kind="both", title=f"Ease-off of the pinion {s1.value} flank against the conjugate of "
+                                             f"the gear {s2.value} flank ({name} side), µm; + = clearance (material "
+                                             "removed from the pinion)")
             files.append(save_figure(fig, out / f"easeoff_{name}.png"))
     return (section, files, maps) if return_maps else (section, files)
 

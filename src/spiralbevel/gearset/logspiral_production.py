@@ -121,7 +121,7 @@ def forging_section(spec, pair, reliefs, crowning, out, summary, plots):
             pts, _, _, w = g.evaluate(varphi, phi)
             devs.append((f"{m.value} {s.value}: forging relief", pts, w * 1e3, "um"))
         section["flanks"][f"{m.value}_{s.value}"] = entry
-        maps.append((f"{m.value} {s.value} (relieved, {mf.draft_angle:g} deg)", after))
+        maps.append((f"{m.value} {s.value} (relieved)", after, theta))
     if plots:
         from . import outputs
         from ..viz.draft_plot import plot_draft_maps

@@ -26,12 +26,19 @@ def draft_maps(results, out: Path) -> str:
     return save_figure(plot_draft_maps(results), out / "draft_map.png")
 
 
-def curvature_maps(grids, out: Path, title: str, labels=("k1 (profile)", "k2 (lengthwise)")) -> str:
-    """PNG of k1 and k2 over every flank, drawn on the projected tooth (convex = positive)."""
-    from ..viz.flank_maps import plot_flank_fields
+def curvature_maps(grids, out: Path, title: str, labels=("k1 (profile)", "k2 (lengthwise)"), ordered=False) -> str:
+    """PNG of k1 and k2 over every flank, drawn on the projected tooth (convex = positive). With ``ordered`` the
+    panels show kappa_max = max(k1, k2) and kappa_min = min(k1, k2), continuous over the flank where the principal
+    directions turn past the labels' reference directions (no step where k1 and k2 swap names)."""
+    from ..viz.flank_maps import ordered_curvatures, plot_flank_fields
 
     panels = []
     for (m, s), g in grids.items():
+        if ordered:
+            kmax, kmin = ordered_curvatures(g.k1, g.k2)
+            panels.append((f"{m.value} {s.value}: κ_max", g.point, kmax, "1/mm (convex +)"))
+            panels.append((f"{m.value} {s.value}: κ_min", g.point, kmin, "1/mm (convex +)"))
+            continue
         panels.append((f"{m.value} {s.value}: {labels[0]}", g.point, g.k1, "1/mm"))
         panels.append((f"{m.value} {s.value}: {labels[1]}", g.point, g.k2, "1/mm"))
     return save_figure(plot_flank_fields(panels, title=title), out / "curvature_maps.png")
@@ -81,11 +88,12 @@ def meshing_pair_3d(pair, grids, out: Path) -> str:
             label = f"gear {s.value}" if k == 0 else None
             surfaces.append((label or "", pair.to_pair_frame(Member.GEAR, pts), color))
     surfaces = [(lab if lab else "_", p, c) for lab, p, c in surfaces]
-    # look down the pitch line from beyond the heel: the tooth's cross-section between the two gear teeth
-    elev = 90.0 - math.degrees(pair.pinion.pitch_angle)
-    return save_figure(plot_surfaces_3d(surfaces, title="Meshing tooth pair (pair frame, zero roll), "
-                                                  "seen from the heel",
-                                        elev=elev, azim=0.0), out / "meshing_pair_3d.png")
+    # two cameras on the pinion axis side (the pinion tooth in front of the gear flanks), azimuths either side of
+    # the tooth's lengthwise direction
+    views = [("from the pinion axis side: the pinion tooth in front of the gear teeth", 20.0, 150.0),
+             ("from the pinion axis side, higher and 50° further round", 50.0, 200.0)]
+    return save_figure(plot_surfaces_3d(surfaces, title="Meshing tooth pair (pair frame, zero roll)", views=views),
+                       out / "meshing_pair_3d.png")
 
 
 def transverse_section(pair, grids, out: Path) -> str:

@@ -14,6 +14,7 @@ class Steps:
         self._progress = None
         self._task = None
         self.current = "starting"
+        self.sub: "tuple[str, int, int] | None" = None   # the last sub-progress of the current step
 
     def __enter__(self):
         if self.enabled:
@@ -33,10 +34,21 @@ class Steps:
 
     @contextmanager
     def step(self, description: str):
-        """Run one step, labelled ``description``."""
+        """Run one step, labelled ``description``; sub-progress that the library reports during the step (see
+        :mod:`spiralbevel._progress`) is shown after the label."""
+        from .._progress import listening
+
         self.current = description
         if self._progress is not None:
             self._progress.update(self._task, description=description)
-        yield
+
+        def sub(stage: str, done: int, total: int) -> None:
+            self.sub = (stage, done, total)
+            if self._progress is not None:
+                self._progress.update(self._task, description=f"{description} | {stage} {done}/{total}")
+
+        with listening(sub):
+            yield
+        self.sub = None
         if self._progress is not None:
             self._progress.advance(self._task)

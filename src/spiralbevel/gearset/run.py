@@ -71,6 +71,7 @@ def write_run(gearset, out, progress: bool = True) -> RunSummary:
 def _run(gs, out, summary, kind, steps, manifest):
     from ..io.atomic import OUTPUT_MARKER, atomic_directory
     from ..io.report import write_report
+    from ..io.report_html import write_run_report_html
 
     with atomic_directory(out, marker=OUTPUT_MARKER, manifest=manifest) as tmp, steps:
         tmp = Path(tmp)
@@ -95,11 +96,12 @@ def _run(gs, out, summary, kind, steps, manifest):
             from .run_facemilled import run_facemilled
 
             run_facemilled(gs, tmp, steps, report, summary)
-        with steps.step("report.json"):
-            summary.files.append("report.json")
+        with steps.step("report.json, report.html"):
+            summary.files += ["report.json", "report.html"]
             report["files"] = sorted(summary.files)
             report["failed_analyses"] = [{"analysis": a, "reason": r} for a, r in summary.partial.failed]
             write_report(tmp / "report.json", report)
+            write_run_report_html(tmp, report, {"pinion": blank.z1, "gear": blank.z2}, blank.Sigma)
         summary.report = report
     return summary
 

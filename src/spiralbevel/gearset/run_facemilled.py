@@ -99,7 +99,7 @@ def run_facemilled(gs, out, steps, report, summary):
     if o.plots:
         with steps.step("plots"):
             if ltca_result is not None:
-                fig = ltca_result.plot()
+                fig = ltca_result.plot(outline=tca_outlines.get(spec.ltca.side, (None, None))[1])
                 fig.suptitle(f"Loaded TCA, {spec.ltca.side} side: {spec.title}")
                 fig.tight_layout(rect=(0, 0, 1, 0.93))
                 summary.files.append(outputs.save_figure(fig, out / "ltca.png"))
@@ -111,8 +111,7 @@ def run_facemilled(gs, out, steps, report, summary):
                     summary.files.append(outputs.save_figure(fig, out / f"tca_{name}.png"))
             summary.files.append(outputs.axial_section(grids, out, spec.title, tooth, blank))
             summary.files.append(outputs.curvature_maps(
-                {k: _Geo(g.points, g.k1, g.k2) for k, g in grids.items()}, out, spec.title,
-                labels=("k1 (principal, nearer the profile)", "k2 (principal, nearer the face)")))
+                {k: _Geo(g.points, g.k1, g.k2) for k, g in grids.items()}, out, spec.title, ordered=True))
     teeth = {Member.PINION: blank.z1, Member.GEAR: blank.z2}
     cad = None
     if o.stl or o.step:  # whole teeth: flanks with their generated fillets

@@ -79,6 +79,12 @@ def run_logspiral(gs, out, steps, report, summary):
             f"mismatched pair: TE {t['te_level_arcsec']:.2f} arcsec (target {spec.crowning.te_level:g}), ellipse a = "
             f"{t['semi_major_axis_mm']:.3f} mm (target {spec.crowning.semi_major_axis:g}), point contact inside the "
             f"flanks: {t['point_contact_inside_flanks']}")
+    if "draft" in report:
+        bad = {k: v["failing_area_fraction"] for k, v in report["draft"]["flanks"].items() if not v["passes"]}
+        summary.highlights.append(
+            "forging draft: FAILS on " + ", ".join(f"{k.replace('_', ' ')} ({100 * f:.1f}% of the area)"
+                                                   for k, f in bad.items()) + " (draft_map.png, report 'draft')"
+            if bad else "forging draft: passes on every flank")
     if "forging" in report:
         ok = all(v["passes"] for v in report["forging"]["flanks"].values())
         summary.highlights.append(f"forging relief: draft {spec.manufacturing.draft_angle:g} deg passes on every "

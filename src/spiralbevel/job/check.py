@@ -24,3 +24,52 @@ def check_design(spec) -> list:
     except DesignError as err:
         raise with_design_keys(err, "gear_set" if spec.flank.kind == "log-spiral" else "face_milling") from err
     return list(getattr(blank, "warnings", ()))
+
+
+def schema_and_design_problems(err, text: str):
+    """One round of ``spiralbevel check``: the schema problems of a design file together with the blank and flank
+    problems of the rest of it.
+
+    Parameters
+    ----------
+    err : DesignError
+        What the schema validation of ``text`` raised.
+    text : str
+        The TOML text of the design file.
+
+    Returns
+    -------
+    DesignError
+        ``err``'s problems, followed by those :func:`check_design` finds on the design with every key named in them
+        removed (so at its default), when that design is complete; otherwise ``err`` itself.
+    """
+    import tomllib
+
+    from pydantic import ValidationError
+
+    from ..errors import DesignError
+    from ..io.design_schema import DesignFile
+
+    try:
+        data = tomllib.loads(text)
+    except (tomllib.TOMLDecodeError, RecursionError):
+        return err
+    for p in err.problems:
+        if not p.field:
+            return err  # a problem of the whole file (too large, malformed): nothing else can be checked
+        node, keys = data, p.field.split(".")
+        while len(keys) > 1 and isinstance(node.get(keys[0]), dict):  # down to the table that holds the bad key
+            node, keys = node[keys[0]], keys[1:]
+        node.pop(keys[0], None)
+    try:
+        spec = DesignFile.model_validate(data)
+        check_design(spec)
+    except ValidationError:
+        return err
+    except DesignError as more:
+        seen = {p.field for p in err.problems}
+        extra = [p for p in more.problems if p.field not in seen]
+        if not extra:
+            return err
+        return DesignError([*err.problems, *extra])
+    return err

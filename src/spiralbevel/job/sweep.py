@@ -95,6 +95,7 @@ def check_scheduler(address) -> None:
 
 @functools.lru_cache(maxsize=4)
 def _pair(spec_json: str, side: str):
+    """(pinion surface, gear surface, kinematics, gear (R, h) of (axial, radius), extra keywords of ``solve_tca``)."""
     from ..io.design_schema import DesignFile
     from ..meshing.generated_surface import phased_for_pair
     from ..meshing.kinematics import BevelPairKinematics
@@ -103,12 +104,70 @@ def _pair(spec_json: str, side: str):
 
     spec = DesignFile.model_validate_json(spec_json)
     blank = blank_from_design(spec)
+    if spec.flank.kind == "log-spiral":
+        return _logspiral_pair(spec, blank, side)
     setups = setup_flanks(spec, blank)
     s1, s2 = PAIR_SIDES[side]
     from ..conventions import Member
 
     c1, c2 = phased_for_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank)
-    return c1, c2, BevelPairKinematics(blank.Sigma, blank.z1, blank.z2), setups[(Member.GEAR, s2)].flank.outline
+    start = np.r_[c1.reference_params, c2.reference_params, 0.0]
+    return (c1, c2, BevelPairKinematics(blank.Sigma, blank.z1, blank.z2), setups[(Member.GEAR, s2)].flank.outline.Rh,
+            {"start": start})
+
+
+def default_side(spec) -> str:
+    """``"drive"``, or for a log-spiral design with a ``[crowning]`` section the side of its crowned pinion flank."""
+    from .facemilled import PAIR_SIDES
+
+    if spec.flank.kind == "log-spiral" and spec.crowning is not None:
+        return next(n for n, (s1, _) in PAIR_SIDES.items() if s1.value == spec.crowning.side)
+    return "drive"
+
+
+def check_logspiral_sweep(spec, side: str) -> None:
+    """A log-spiral design can be swept only on the side of its crowned pinion flank: the exact pair is in line
+    contact, which any misalignment turns into contact at a flank edge that the surface TCA does not follow.
+    Raises :class:`DesignError` naming the design-file key otherwise."""
+    from .facemilled import PAIR_SIDES
+
+    if spec.crowning is None:
+        raise DesignError.single("crowning", "absent", "a [crowning] section for a misalignment sweep of a log-spiral "
+                                 "design", "-", "the exact log-spiral pair is in line contact, and any misalignment "
+                                 "moves its contact onto a flank edge, which the surface TCA does not follow; a "
+                                 "crowned pinion (see the bundled aviation_23x65_logspiral_forged) has point contact "
+                                 "that can be swept")
+    crowned = spec.crowning.side
+    if PAIR_SIDES[side][0].value != crowned:
+        other = next(n for n, (s1, _) in PAIR_SIDES.items() if s1.value == crowned)
+        raise DesignError.single("--side", side, f"'{other}' (crowning.side = '{crowned}' is the crowned pinion flank)",
+                                 "-", "the other side of a log-spiral design is the exact pair in line contact")
+
+
+def _logspiral_pair(spec, blank, side: str):
+    from ..conventions import Member
+    from ..meshing.kinematics import BevelPairKinematics
+    from .facemilled import PAIR_SIDES
+    from .logspiral import design_pair
+    from .logspiral_production import contact_surface, design_crowning
+
+    check_logspiral_sweep(spec, side)
+    pair = design_pair(spec, blank)
+    crowning = design_crowning(spec, pair)
+    s1, s2 = PAIR_SIDES[side]
+    kin = BevelPairKinematics(pair.shaft_angle, pair.pinion.teeth, pair.gear.teeth)
+    c1 = contact_surface(pair, Member.PINION, s1, crowning)
+    c2 = contact_surface(pair, Member.GEAR, s2)
+    p1 = pair.mean_point(Member.PINION, s1).point
+    phi1_mean = -math.atan2(p1[1], p1[0])          # turns the pinion mean point onto the pitch line
+    start = np.r_[c1.reference_params, c2.reference_params, -kin.ratio * phi1_mean]
+    sd, cd = math.sin(pair.gear.pitch_angle), math.cos(pair.gear.pitch_angle)
+
+    def rh(axial, radius):
+        """Cone distance along the gear pitch cone and height above it, mm."""
+        return radius * sd + axial * cd, radius * cd - axial * sd
+
+    return c1, c2, kin, rh, {"start": start, "phi1_mean": phi1_mean}
 
 
 def sweep_point(spec_json: str, side: str, values: tuple, n_positions: int = 41) -> dict:
@@ -116,21 +175,20 @@ def sweep_point(spec_json: str, side: str, values: tuple, n_positions: int = 41)
     from ..meshing.misalignment import Misalignment
     from ..meshing.tca import solve_tca
 
-    c1, c2, kin, outline = _pair(spec_json, side)
+    c1, c2, kin, rh, extra = _pair(spec_json, side)
     kw = dict(zip(AXES, values))
     kw["shaft_angle"] = math.radians(kw["shaft_angle"])
     out = dict(zip(AXES, values))
     try:
-        res = solve_tca(c1, c2, kin, misalignment=Misalignment(**kw), n_positions=n_positions,
-                        start=np.r_[c1.reference_params, c2.reference_params, 0.0])
+        res = solve_tca(c1, c2, kin, misalignment=Misalignment(**kw), n_positions=n_positions, **extra)
     except (NoContactError, ConvergenceError, DesignError) as err:
         return dict(out, error=str(err))
     te = res.te_arcsec
     fin = np.isfinite(te)
     mid = n_positions // 2
     j = list(res.pairs).index(0)
-    p = res.point2[mid, j] @ c2._R
-    R, h = outline.Rh(p[2], math.hypot(p[0], p[1]))
+    p = res.point2[mid, j]  # (R, h) depend on the axial position and radius only: any rotation about the axis
+    R, h = rh(p[2], math.hypot(p[0], p[1]))
     return dict(out, peak_to_peak_arcsec=float(np.ptp(te[fin])) if np.any(fin) else None,
                 edge_contact_positions=int(np.sum(res.edge_contact)), mean_contact_R_mm=float(R),
                 mean_contact_h_mm=float(h))
@@ -176,7 +234,8 @@ def misalignment_sweep(spec, grid: dict, side: str = "drive", scheduler: str | N
     Parameters
     ----------
     spec : DesignFile
-        A face-milled design.
+        A face-milled design, or a log-spiral design with a ``[crowning]`` section (swept on the side of its crowned
+        pinion flank, without the forging relief).
     grid : dict
         {axis: list of values} for axes in :data:`AXES` (mm, mm, mm, deg); missing axes are 0.
     side : {"drive", "coast"}
@@ -190,13 +249,13 @@ def misalignment_sweep(spec, grid: dict, side: str = "drive", scheduler: str | N
         One record per grid point: the misalignment values, TE peak-to-peak (arcsec), edge-contact positions, and the
         mean-position contact point on the gear in (R, h), mm.
     """
-    if spec.flank.kind != "face-milled":
-        raise DesignError.single("flank.kind", spec.flank.kind, "'face-milled' for a misalignment sweep", "-")
     bad = [k for k in grid if k not in AXES]
     if bad:
         raise DesignError.single("sweep axis", bad[0], ", ".join(AXES), "-")
     if side not in ("drive", "coast"):
         raise DesignError.single("--side", side, "'drive' or 'coast'", "-")
+    if spec.flank.kind == "log-spiral":
+        check_logspiral_sweep(spec, side)
     check_scheduler(scheduler)
     axes = []
     for k in AXES:

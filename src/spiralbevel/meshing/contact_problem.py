@@ -32,7 +32,9 @@ class ContactProblem:
         Flanks in their member frames (outward normals).
     kinematics : object
         Anything with ``z1``, ``z2`` (int) and ``shaft_angle`` (rad), e.g.
-        :class:`~spiralbevel.meshing.kinematics.BevelPairKinematics`.
+        :class:`~spiralbevel.meshing.kinematics.BevelPairKinematics`; with an ``axes(misalignment)`` method
+        (:class:`~spiralbevel.meshing.hypoid_kinematics.HypoidPairKinematics`) the pair is placed by it (crossed axes,
+        pitch apexes off the crossing point) and the misalignment acts on top.
     misalignment : Misalignment, optional
     scale : float, mm, optional
         Length scale of the normal equations (default: |pinion point| at its reference parameters, else 100).
@@ -59,7 +61,9 @@ class ContactProblem:
         self.pinion, self.gear = pinion, gear
         self.z1, self.z2, self.shaft_angle = int(kinematics.z1), int(kinematics.z2), float(s)  # type: ignore[arg-type]
         self.misalignment = misalignment if misalignment is not None else Misalignment()
-        self.axes = self.misalignment.axes(self.shaft_angle)
+        # crossed axes (HypoidPairKinematics): the pair's own placement with the misalignments on top
+        place = getattr(kinematics, "axes", None)
+        self.axes = place(self.misalignment) if callable(place) else self.misalignment.axes(self.shaft_angle)
         if scale is None:
             ref = getattr(pinion, "reference_params", None)
             scale = float(np.linalg.norm(pinion.evaluate(np.asarray(ref, float))[0])) if ref is not None else 100.0

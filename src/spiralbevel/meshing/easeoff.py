@@ -169,7 +169,7 @@ class EaseOff:
                     profile_crowning=float(c[5]), bias=float(c[4]))
 
     def plot(self, kind: str = "surface", ax=None, title: str = "Ease-off"):
-        """Plot the map (``kind="surface"``: 3-D surface, ``"contour"``: filled contours), values in um.
+        """Plot the map (``kind="surface"``: 3-D surface, ``"contour"``: filled contours, ``"both"``), values in um.
 
         Returns
         -------

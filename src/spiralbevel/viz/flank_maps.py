@@ -13,6 +13,13 @@ def projected(points):
     return points[..., 2], np.hypot(points[..., 0], points[..., 1])
 
 
+def ordered_curvatures(k1, k2):
+    """(kappa_max, kappa_min) = (max(k1, k2), min(k1, k2)) pointwise, 1/mm: the principal curvatures ordered by value,
+    continuous over a flank (unlike curvatures labelled by the nearer of two reference directions)."""
+    k1, k2 = np.asarray(k1, float), np.asarray(k2, float)
+    return np.maximum(k1, k2), np.minimum(k1, k2)
+
+
 def plot_flank_fields(panels, title="", cmap="coolwarm", symmetric=True):
     """Draw one or more scalar fields on projected flanks.
 
@@ -51,7 +58,7 @@ def plot_flank_fields(panels, title="", cmap="coolwarm", symmetric=True):
         ax.set_visible(False)
     if title:
         fig.suptitle(title)
-    fixed_layout(fig, rows, cols, suptitle=bool(title))
+    fixed_layout(fig, rows, cols, right=1.0, suptitle=bool(title))
     return fig
 
 
@@ -83,5 +90,5 @@ def plot_domain_fields(panels, title="", ncols=4):
         ax.set_visible(False)
     if title:
         fig.suptitle(title)
-    fixed_layout(fig, rows, ncols, suptitle=bool(title))
+    fixed_layout(fig, rows, ncols, right=1.0, suptitle=bool(title))
     return fig

@@ -36,12 +36,26 @@ def _outline_lines(outline):
     return [(np.asarray(line, float), f"boundary {i}") for i, line in enumerate(outline)]
 
 
+def _label_outside(ax, lines):
+    """Label each boundary line at its middle, pushed outward from the outline's centre (toe, heel, root and top
+    labels then sit outside the flank, clear of the contact path and ellipses drawn inside it)."""
+    qs = [project_axial_radial(line) for line, _ in lines]
+    centre = np.concatenate(qs).mean(0)
+    for q, (_, label) in zip(qs, lines):
+        m = q[len(q) // 2]
+        d = m - centre
+        d = d / (np.hypot(*d) or 1.0)
+        ax.annotate(label, m, xytext=(14 * d[0], 14 * d[1]), textcoords="offset points", fontsize=7, color="0.3",
+                    ha="center", va="center", annotation_clip=False)
+
+
 def _tooth_panel(ax, title, outline, path, ellipses, status_ok, edge=None):
-    for line, label in _outline_lines(outline):
+    lines = _outline_lines(outline)
+    for line, _ in lines:
         q = project_axial_radial(line)
         ax.plot(q[:, 0], q[:, 1], "k-", lw=1.0)
-        m = q[len(q) // 2]
-        ax.annotate(label, m, fontsize=7, color="0.3")
+    if lines:
+        _label_outside(ax, lines)
     q = project_axial_radial(path)
     ax.plot(q[status_ok, 0], q[status_ok, 1], "o-", ms=2.5, lw=1.0, color="C3", label="contact path")
     edge = np.zeros(len(q), bool) if edge is None else edge
@@ -50,10 +64,13 @@ def _tooth_panel(ax, title, outline, path, ellipses, status_ok, edge=None):
     for e in ellipses:
         qe = project_axial_radial(e)
         ax.plot(qe[:, 0], qe[:, 1], "-", lw=0.7, color="C0")
+    if ellipses:
+        ax.plot([], [], "-", lw=0.7, color="C0", label="contact ellipses")
     ax.set_title(title)
     ax.set_xlabel("axial position z (mm)")
     ax.set_ylabel("radius (mm)")
     ax.set_aspect("equal", adjustable="datalim")
+    ax.margins(0.12)
     ax.legend(fontsize=7, loc="best")
 
 
@@ -74,6 +91,7 @@ def plot_tca(result, outline1=None, outline2=None, axes=None, ellipse_every=4, n
     Returns
     -------
     matplotlib.figure.Figure
+        The pinion rotation is shown in degrees from the mean position (as in the loaded TCA plot), TE in arcsec.
     """
     plt = _plt()
     if axes is None:
@@ -81,11 +99,11 @@ def plot_tca(result, outline1=None, outline2=None, axes=None, ellipse_every=4, n
     else:
         fig = axes[0].figure
     ax_te, ax1, ax2 = axes
-    x = result.phi1 - result.phi1_mean
+    x = np.degrees(result.phi1 - result.phi1_mean)
     for j, k in enumerate(result.pairs):
         ax_te.plot(x, result.te_pairs[:, j] / ARCSEC, "--", lw=0.8, label=f"pair {k}")
     # the envelope through the exact transfer points (its kinks between positions)
-    tt = np.asarray(result.transfer_phi1, float) - result.phi1_mean
+    tt = np.degrees(np.asarray(result.transfer_phi1, float) - result.phi1_mean)
     te_t = np.asarray(getattr(result, "transfer_te", np.full(tt.shape, np.nan)), float)
     xe = np.r_[x, tt[np.isfinite(te_t)]]
     ye = np.r_[result.te, te_t[np.isfinite(te_t)]]
@@ -98,7 +116,7 @@ def plot_tca(result, outline1=None, outline2=None, axes=None, ellipse_every=4, n
                    label="edge contact" + (f" ({', '.join(names)})" if names else ""))
     for t in tt:
         ax_te.axvline(t, color="0.6", lw=0.6)
-    ax_te.set_xlabel("pinion rotation phi1 - phi10 (rad)")
+    ax_te.set_xlabel("pinion rotation φ1 − φ10 (deg)")
     ax_te.set_ylabel("transmission error (arcsec)")
     ax_te.set_title("transmission error")
     ax_te.legend(fontsize=7)

@@ -142,3 +142,27 @@ def test_vectorized_stiffness_equals_scikit_fem_assembly(pinion_mesh, order):
     u_ref = splu(A).solve(b)
     # condition number of the clamped segment ~1e7: solutions agree to ~1e-10 relative (measured 3e-13)
     assert np.max(np.abs(factorize(K[free][:, free].tocsc()).solve(b) - u_ref)) <= 1e-9 * np.max(np.abs(u_ref))
+
+
+def test_fe_build_reports_sub_progress_to_the_job_progress_bar():
+    """The FE compliance build reports its factorization and its unit-load solves (one report per block of 64), so
+    the progress bar moves during the minutes it takes; the same matrix with and without a listener."""
+    from spiralbevel._progress import listening
+    from spiralbevel.job.progress import Steps
+
+    seen = []
+    with listening(lambda stage, done, total: seen.append((stage, done, total))):
+        _, tc = _cantilever(16, 8, 1, order=1)
+    n = tc.G.shape[0]
+    assert seen[0][0].endswith("factorizing") and seen[0][1:] == (0, n)
+    done = [d for s, d, t in seen if s.endswith("unit loads")]
+    assert done == sorted(done) and done[-1] == n and len(done) == -(-n // 64)
+    _, plain = _cantilever(16, 8, 1, order=1)
+    np.testing.assert_array_equal(plain.G, tc.G)
+    with Steps(1, enabled=True) as steps:
+        with steps.step("loaded TCA"):
+            _cantilever(16, 8, 1, order=1)
+            assert steps.sub is not None and steps.sub[1:] == (n, n)
+            task = steps._progress.tasks[0]
+            assert task.description == f"loaded TCA | {steps.sub[0]} {n}/{n}"
+        assert steps.sub is None

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import DesignError, MissingDependencyError
+from ..._progress import report
 from .fe_cache import cache_key, default_cache_dir, load_matrix, store_matrix
 from .halfspace import STEEL, Material
 from .mesher import SegmentMesh, grid_normals
@@ -191,8 +192,10 @@ def _solve_fe(mesh: SegmentMesh, loads_nodes, loads_normals, material, order):
     live = rows >= 0
     nrm = np.where(live.T, loads_normals, 0.0)
     rows = np.where(live, rows, 0)
-    lu = factorize(K[free][:, free].tocsc())
+    stage = f"FE compliance, {len(free)} dofs"
     nl = len(loads_nodes)
+    report(f"{stage}: factorizing", 0, nl)
+    lu = factorize(K[free][:, free].tocsc())
     G = np.empty((nl, nl))
     for start in range(0, nl, 64):
         sl = slice(start, min(nl, start + 64))
@@ -202,6 +205,7 @@ def _solve_fe(mesh: SegmentMesh, loads_nodes, loads_normals, material, order):
             B[rows[c, sl], cols] += nrm[sl, c]
         U = lu.solve(B)
         G[:, sl] = sum(nrm[:, c, None] * U[rows[c]] for c in range(3))
+        report(f"{stage}: unit loads", sl.stop, nl)
     return G, len(free)
 
 

@@ -1,0 +1,128 @@
+"""Face-milled hypoid designs in the job: the four flanks of a hypoid pair (basic settings at each member's mean cone
+distance, local synthesis of the pinion in the crossed-axes frame). Used by ``spiralbevel machine``; the other
+commands still stop on a hypoid (``job.blank.require_no_offset``)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..conventions import Member
+from ..errors import ConvergenceError, DesignError, GeometryError, NoContactError
+from ..meshing.tca_result import ARCSEC
+from .facemilled import (DEFAULT_PATH_DIRECTIONS, MEMBERS, PAIR_SIDES, SIDES, FlankSetup, _default_cutter, _FREE,
+                         _given_cutter, _given_settings, _in_design_file, effective_synthesis)
+
+__all__ = ["setup_hypoid_flanks"]
+
+#: positions of the TCA that checks the bearing of a synthesized hypoid pair over one mesh cycle
+_CHECK_POSITIONS = 41
+
+
+def _basic(spec, blank):
+    from ..design.hypoid_member import member_blank
+    from ..generation.basic_settings_solve import solve_basic_settings
+    from ..generation.flank import generate_flank
+
+    out = {}
+    for m in MEMBERS:
+        view = member_blank(blank, m)
+        for s in SIDES:
+            key = f"{m.value}_{s.value}"
+            fs = getattr(spec.face_milling, key)
+            fit = None
+            try:
+                cutter = _given_cutter(fs.cutter, s) if fs.cutter is not None else _default_cutter(spec, view, m, s)
+                if fs.machine is not None:
+                    settings, source = _given_settings(fs.machine), "given"
+                    flank = generate_flank(cutter, settings, view, m, s)
+                    flank.mean_point()
+                else:
+                    cutter, settings, flank, fit = solve_basic_settings(
+                        view, m, s, cutter, solve_blade_angle=fs.cutter is None, roll=spec.face_milling.roll)
+                    source = (f"hypoid basic settings solved for the design pressure and spiral angles at R_m{m.index}"
+                              + ("" if fs.cutter is None else " (given cutter: spiral angle only)"))
+            except DesignError as err:
+                raise _in_design_file(err, key, fs) from err
+            out[(m, s)] = FlankSetup(m, s, cutter, settings, flank, source, fit)
+    return out
+
+
+def _off_flank(res) -> int:
+    """TCA positions over one mesh cycle where the synthesized pair's contact is not inside both flanks."""
+    from ..meshing.synthesis.hypoid_local import tca_surfaces
+    from ..meshing.tca import solve_tca
+
+    try:
+        res.pinion_flank.grid(9, 5, curvature=False)
+    except GeometryError:
+        return _CHECK_POSITIONS
+    c1, c2, start = tca_surfaces(res)
+    try:
+        tca = solve_tca(c1, c2, res.kinematics, n_positions=_CHECK_POSITIONS, start=start)
+    except (NoContactError, ConvergenceError):
+        return _CHECK_POSITIONS
+    return int(np.sum(~np.isfinite(tca.te) | tca.edge_contact))
+
+
+def _synthesize(spec, blank, setups):
+    from ..meshing import synthesis as syn
+    from ..meshing.synthesis.hypoid_local import synthesize_hypoid_pinion
+
+    sy = effective_synthesis(spec, blank)
+    if sy is None:
+        return {}, {}
+    if sy.motion_curve != "parabolic":
+        raise DesignError.single("synthesis.motion_curve", sy.motion_curve, "'parabolic' for a hypoid pair", "-",
+                                 "multi-point control of a hypoid pinion is not supported yet")
+    default = getattr(sy, "_default", False)
+    new, results = {}, {}
+    for name in sy.sides:
+        s1, s2 = PAIR_SIDES[name]
+        gear, pin = setups[(Member.GEAR, s2)], setups[(Member.PINION, s1)]
+        etas = DEFAULT_PATH_DIRECTIONS if default else (sy.path_direction,)
+        best, last = None, None
+        for eta in etas:
+            try:
+                res = synthesize_hypoid_pinion(
+                    gear.flank, pin.cutter, pin.settings, blank, side=s1, eta=math.radians(eta),
+                    semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC, approach=sy.approach,
+                    free=getattr(syn, _FREE[sy.free]))
+            except (ConvergenceError, GeometryError) as err:
+                if not default:
+                    raise
+                last = err
+                continue
+            off = _off_flank(res) if default else 0
+            if best is None or off < best[0]:
+                best = (off, res, eta)
+            if off == 0:
+                break
+        if best is None:
+            raise ConvergenceError(f"{name} side: the default local synthesis of the hypoid pinion found no pinion "
+                                   f"flank for any path direction (last: {last}); give a [synthesis] section",
+                                   getattr(last, "iterations", 0), getattr(last, "residual", float("inf")),
+                                   getattr(last, "last", None)) from last
+        off, res, eta = best
+        note = "" if off == 0 else f"; bearing off the flanks at {off} of {_CHECK_POSITIONS} positions"
+        new[(Member.PINION, s1)] = FlankSetup(
+            Member.PINION, s1, res.pinion_cutter, res.pinion_settings, res.pinion_flank,
+            f"hypoid local synthesis ({name} side, path {eta:g} deg, free = {sy.free}{note})")
+        results[name] = res
+    return new, results
+
+
+def setup_hypoid_flanks(spec, blank, with_synthesis: bool = False):
+    """Cutters, settings and generated flanks of the four flanks of a face-milled hypoid design.
+
+    The basic settings of each member are solved at its own mean cone distance for the design mean-point angles; the
+    pinion side of each synthesized pair side is then replaced by the hypoid local synthesis at the pitch point
+    (the design file's ``[synthesis]``, or the developed-pair defaults with the path direction chosen to keep the
+    bearing inside the flanks). Returns ``{(member, side): FlankSetup}`` (and ``{side name: HypoidSynthesis}`` with
+    ``with_synthesis``).
+    """
+    out = _basic(spec, blank)
+    new, synth = _synthesize(spec, blank, out)
+    out.update(new)
+    return (out, synth) if with_synthesis else out

@@ -1,0 +1,43 @@
+"""Measurement grid and corrective settings on a hypoid pinion flank (ISO 23509 Sample 2, pinion by hypoid local
+synthesis, generated with a blank offset; the member's view of the blank): known setting errors are recovered."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from spiralbevel.conventions import Member, Side
+from spiralbevel.design.blank import BlankInput, compute_blank
+from spiralbevel.design.hypoid_member import member_blank
+from spiralbevel.generation import generate_flank
+from spiralbevel.manufacturing.correction import apply_changes, correct_settings
+from spiralbevel.manufacturing.measurement import measure_deviation, measurement_grid
+from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks
+from spiralbevel.meshing.synthesis.hypoid_local import synthesize_hypoid_pinion
+
+R = math.radians
+SAMPLE2 = dict(z1=13, z2=42, b=30.0, beta_m=R(50.0), rc0=63.5, de2=170.0, a=15.0, f_alim=1.0, c_ham=0.35, k_d=2.0,
+               k_c=0.125, k_t=0.1, jet=0.2, taper="given", theta_a2=R(1.0), theta_f2=R(4.0))
+TRUE = {"radial_setting": 0.05, "cradle_angle": R(0.01), "blank_offset": -0.03}
+
+
+def test_round_trip_recovers_known_setting_errors():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")      # Sample 2's own face width warning
+        blank = compute_blank(BlankInput(**SAMPLE2))
+    flanks = hypoid_basic_flanks(blank)
+    c, s, _, _ = flanks[(Member.PINION, Side.CONCAVE)]
+    syn = synthesize_hypoid_pinion(flanks[(Member.GEAR, Side.CONVEX)][2], c, s, blank, eta=R(6.0),
+                                   semi_major_axis=3.7, te_magnitude=6.0 * math.pi / 648000.0)
+    view = member_blank(blank, Member.PINION)
+    key = (Member.PINION, Side.CONCAVE)
+    cutter, settings = syn.pinion_cutter, syn.pinion_settings
+    grid = measurement_grid(syn.pinion_flank)
+    measured = measure_deviation(generate_flank(*apply_changes(cutter, settings, TRUE), view, *key), grid)
+    assert np.max(np.abs(measured)) > 0.01
+    res = correct_settings(cutter, settings, view, *key, grid, measured, parameters=tuple(TRUE), iterations=2)
+    assert res.rank == 3 and not res.not_identifiable
+    for name, value in TRUE.items():     # one chord Gauss-Newton step after the linear one, as for spiral bevels
+        assert res.identified[name] / value == pytest.approx(1.0, abs=1e-4), name
+    assert res.rms_after < 1e-4 * res.rms_before

@@ -1,0 +1,104 @@
+"""The pinion conjugate to a wheel flank in a hypoid pair, and the hypoid ease-off
+(spiralbevel.meshing.hypoid_conjugate): envelope property by finite differences, the synthesized pinion touches its
+conjugate at the mean contact, E = 0 equals the intersecting-axes envelope solver and ease-off."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from spiralbevel.conventions import Member, Side
+from spiralbevel.design.blank import BlankInput, compute_blank
+from spiralbevel.machine import seed001_blank, seed001_settings
+from spiralbevel.meshing.easeoff import conjugate_pinion, easeoff
+from spiralbevel.meshing.generated_surface import phased_for_pair
+from spiralbevel.meshing.hypoid_conjugate import conjugate_pinion_points, hypoid_easeoff
+from spiralbevel.meshing.hypoid_kinematics import HypoidPairKinematics
+from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks
+from spiralbevel.meshing.synthesis import synthesize_pinion
+from spiralbevel.meshing.synthesis.hypoid_local import synthesize_hypoid_pinion, tca_surfaces
+
+R = math.radians
+ARCSEC = math.pi / 648000.0
+SAMPLE2 = dict(z1=13, z2=42, b=30.0, beta_m=R(50.0), rc0=63.5, de2=170.0, a=15.0, f_alim=1.0, c_ham=0.35, k_d=2.0,
+               k_c=0.125, k_t=0.1, jet=0.2, taper="given", theta_a2=R(1.0), theta_f2=R(4.0))
+
+
+@pytest.fixture(scope="module")
+def hypoid():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")      # Sample 2's own face width warning
+        blank = compute_blank(BlankInput(**SAMPLE2))
+    flanks = hypoid_basic_flanks(blank)
+    c, s, _, _ = flanks[(Member.PINION, Side.CONCAVE)]
+    syn = synthesize_hypoid_pinion(flanks[(Member.GEAR, Side.CONVEX)][2], c, s, blank, eta=R(6.0),
+                                   semi_major_axis=3.7, te_magnitude=6.0 * ARCSEC)
+    return syn, tca_surfaces(syn)
+
+
+@pytest.fixture(scope="module")
+def seed001():
+    blank = seed001_blank()
+    gc, gs = seed001_settings()[(Member.GEAR, Side.CONVEX)]
+    r = synthesize_pinion(gc, gs, blank, side=Side.CONCAVE, eta=R(6.0), semi_major_axis=3.7,
+                          te_magnitude=3.0 * ARCSEC)
+    return r, HypoidPairKinematics(blank.Sigma, blank.z1, blank.z2)
+
+
+def test_conjugate_touches_the_synthesized_pinion_at_the_mean_contact(hypoid):
+    syn, (c1, c2, _) = hypoid
+    r, n, phi2 = conjugate_pinion_points(*c2.evaluate(c2.reference_params), syn.kinematics)
+    p, m = c1.evaluate(c1.reference_params)
+    assert abs(phi2) < 1e-10                   # the phased mean contact is at zero roll
+    np.testing.assert_allclose(r, p, atol=1e-9)
+    np.testing.assert_allclose(n, m, atol=1e-10)
+
+
+def test_conjugate_is_an_envelope(hypoid):
+    """The conjugate surface, parametrized by the wheel's (u, psi_c), has the mapped normal as its own normal."""
+    syn, (_, c2, _) = hypoid
+
+    def conj(q):
+        return conjugate_pinion_points(*c2.evaluate(q), syn.kinematics)[:2]
+
+    h = np.array([1e-4, 1e-6])                  # mm, rad: truncation ~1e-10 relative
+    for dq in ((0.0, 0.0), (1.0, 0.02), (-1.5, -0.03)):
+        q = c2.reference_params + np.array(dq)
+        _, n = conj(q)
+        for k in range(2):
+            e = np.zeros(2)
+            e[k] = h[k]
+            d = (conj(q + e)[0] - conj(q - e)[0]) / (2 * h[k])
+            assert abs(d @ n) / np.linalg.norm(d) < 1e-8
+
+
+def test_zero_offset_is_the_envelope_solver(seed001):
+    r, kin = seed001
+    access, _ = conjugate_pinion(r.gear_flank, kin)
+    g = r.gear_flank.grid(5, 4, curvature=False)
+    ref_p, ref_n = access.surface(g.u, g.psi_c)
+    mp = r.gear_flank.mean_point()
+    got_p, got_n, _ = conjugate_pinion_points(g.points, g.normals, kin,
+                                              phi2_ref=math.pi - math.atan2(mp.point[1], mp.point[0]))
+    np.testing.assert_allclose(got_p, ref_p, atol=1e-11)
+    np.testing.assert_allclose(got_n, ref_n, atol=1e-13)
+
+
+def test_zero_offset_easeoff_is_the_spiral_bevel_easeoff(seed001):
+    r, kin = seed001
+    _, gear = phased_for_pair(r.pinion_flank, r.gear_flank)
+    a = easeoff(r.pinion_flank, r.gear_flank, kin, n_face=5, n_profile=4)
+    b = hypoid_easeoff(r.pinion_flank, gear, kin, n_face=5, n_profile=4)
+    assert np.max(np.abs(a.values)) > 0.01
+    np.testing.assert_allclose(b.values, a.values, atol=1e-10)
+
+
+def test_hypoid_easeoff_of_the_synthesized_pinion(hypoid):
+    """A crowned point contact: zero at the mean contact, clearance (positive) everywhere else."""
+    syn, (_, c2, _) = hypoid
+    eo = hypoid_easeoff(syn.pinion_flank, c2, syn.kinematics, n_face=7, n_profile=5)
+    assert np.min(eo.values) > -1e-6
+    i, j = np.unravel_index(np.argmin(eo.values), eo.values.shape)
+    assert eo.values[i, j] < 1e-3 and abs(eo.R[i, j] - eo.mean_R) < 0.2 * (eo.R.max() - eo.R.min())
+    assert np.max(eo.values) > 0.05                         # tens of micrometres at toe and heel

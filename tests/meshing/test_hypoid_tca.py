@@ -1,0 +1,73 @@
+"""TCA of a hypoid pair (ISO 23509 Sample 2, basic settings of spiralbevel.meshing.hypoid_pair) in the crossed-axes
+pair frame, against the brute-force oracle (tests/meshing/_contact_oracle.py, given the hypoid assembly axes): the
+leading contact's gear rotation agrees to <= 0.1 arcsec (the oracle's own accuracy is ~1e-5 arcsec), on the drive
+side (surface contact) and on the coast side (where the bearing of the unsynthesized pair runs onto a flank edge)."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from _contact_oracle import Oracle
+
+from spiralbevel.conventions import Member, Side
+from spiralbevel.design.blank import BlankInput, compute_blank
+from spiralbevel.meshing.hypoid_kinematics import HypoidPairKinematics
+from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks, phased_for_hypoid_pair
+from spiralbevel.meshing.misalignment import Misalignment
+from spiralbevel.meshing.tca import solve_tca
+from spiralbevel.meshing.tca_result import ARCSEC, ContactStatus
+
+R = math.radians
+SAMPLE2 = dict(z1=13, z2=42, b=30.0, beta_m=R(50.0), rc0=63.5, de2=170.0, a=15.0, f_alim=1.0, c_ham=0.35, k_d=2.0,
+               k_c=0.125, k_t=0.1, jet=0.2, taper="given", theta_a2=R(1.0), theta_f2=R(4.0))
+TOL_ARCSEC = 0.1
+
+
+@pytest.fixture(scope="module")
+def pair():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")      # Sample 2's own face width warning
+        blank = compute_blank(BlankInput(**SAMPLE2))
+    return blank, hypoid_basic_flanks(blank), HypoidPairKinematics.from_blank(blank)
+
+
+def _box(surface):
+    g = surface.flank.grid(31, 15, curvature=False)
+    lo, hi = np.array([g.u.min(), g.psi_c.min()]), np.array([g.u.max(), g.psi_c.max()])
+    d = 0.02 * (hi - lo)
+    return np.stack([lo - d, hi + d], 1)
+
+
+def _deviation(c1, c2, kin, res, mis, idx):
+    """|lead_TCA - lead_oracle| arcsec at positions idx (lead = -drive * phi2 of the leading contact)."""
+    o = Oracle(c1, c2, _box(c1), _box(c2), kin.z1, kin.z2, kin.axes(mis))
+    P = np.asarray(res.pairs)
+    phi = res.phi1[idx][:, None] + 2 * np.pi * P / kin.z1
+    p2e, _ = o.first_touch(phi.ravel(), res.drive_sign, (-kin.z1 / kin.z2 * phi.ravel(), c1.reference_params,
+                                                          c2.reference_params))
+    p2 = p2e.reshape(phi.shape) + 2 * np.pi * P / kin.z2
+    lead = np.max(np.where(np.isfinite(p2), -res.drive_sign * p2, -np.inf), axis=1)
+    return (-res.drive_sign * res.phi2[idx] - lead) / ARCSEC
+
+
+@pytest.mark.parametrize("pinion_side, mis", [(Side.CONCAVE, Misalignment()), (Side.CONVEX, Misalignment()),
+                                              (Side.CONCAVE, Misalignment(offset=0.05, pinion_axial=0.03))])
+def test_hypoid_tca_matches_brute_force(pair, pinion_side, mis):
+    blank, flanks, kin = pair
+    c1, c2 = phased_for_hypoid_pair(kin, blank, flanks[(Member.PINION, pinion_side)][2],
+                                    flanks[(Member.GEAR, pinion_side.mate)][2])
+    res = solve_tca(c1, c2, kin, misalignment=mis, n_positions=21,
+                    start=np.r_[c1.reference_params, c2.reference_params, 0.0])
+    n = len(res.phi1)
+    e = np.flatnonzero(res.status == ContactStatus.EDGE)
+    idx = np.unique(np.r_[np.arange(0, n, 5), e[::3]])
+    d = _deviation(c1, c2, kin, res, mis, idx)
+    assert np.all(np.isfinite(d)) and np.max(np.abs(d)) <= TOL_ARCSEC, (idx, np.round(d, 4))
+    if mis.is_aligned:
+        # the mean points meet at the pitch point at zero roll: zero transmission error there, a surface contact
+        mid = n // 2
+        assert res.status[mid] == ContactStatus.OK and abs(res.te_arcsec[mid]) < 1e-6
+        if pinion_side is Side.CONCAVE:     # drive: a surface contact over the whole mesh cycle
+            assert not e.size
