@@ -75,8 +75,8 @@ def develop(text):
         sec = section[name]
         if "error" in sec:
             return f"TCA {name}: {sec['error']}"
-        if sec["no_contact_positions_rad"]:
-            return f"TCA {name}: no contact at {len(sec['no_contact_positions_rad'])} positions"
+        if sec["no_contact_positions_deg"]:
+            return f"TCA {name}: no contact at {len(sec['no_contact_positions_deg'])} positions"
         if not np.all(np.isfinite(sec["transmission_error_arcsec"])):
             return f"TCA {name}: NaN transmission error"
     return None

@@ -1,15 +1,15 @@
 """One-way layers (STYLE.md): a package imports only packages below it.
 
 Order, bottom to top: errors, conventions < _core < geometry < design < machine < generation < meshing < rating <
-manufacturing < io < viz < job < cli. The one exception: a result object's ``plot`` method may import ``viz`` lazily
-(the compute -> result -> ``.plot()`` pattern of python-control).
+manufacturing < io < viz < gearset < job < cli. The one exception: a result object's ``plot`` method may import
+``viz`` lazily (the compute -> result -> ``.plot()`` pattern of python-control).
 """
 
 import ast
 from pathlib import Path
 
 ORDER = ["errors", "conventions", "_core", "geometry", "design", "machine", "generation", "meshing", "rating",
-         "manufacturing", "io", "viz", "job", "cli"]
+         "manufacturing", "io", "viz", "gearset", "job", "cli"]
 RANK = {name: i for i, name in enumerate(ORDER)}
 RANK["conventions"] = RANK["errors"]  # both at the bottom, conventions may use errors and vice versa
 ROOT = Path(__file__).resolve().parents[1] / "src" / "spiralbevel"

@@ -38,6 +38,8 @@ _LAZY = {
     "rate_iso10300": "rating", "RatingInput": "rating", "RatingResult": "rating",
     # files and the main job
     "load_design": "io.design_file", "run_design": "job",
+    # the user-facing gear set (design -> pair assembled once -> result objects)
+    "GearSet": "gearset",
 }
 
 __all__ = sorted(["Hand", "Member", "Side", "SpiralBevelError", "DesignError", "GeometryError", "ConvergenceError",

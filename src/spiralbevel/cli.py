@@ -215,7 +215,7 @@ def blank(
 ):
     """Print the ISO 23509 dimension sheet of pinion and gear."""
     from .io.dimension_sheet import dimension_sheet_json, dimension_sheet_rows
-    from .job.blank import blank_from_design
+    from .gearset.blank import blank_from_design
 
     if output is not None:
         from .io.atomic import check_output_file
@@ -249,7 +249,7 @@ def rate(
     output: Optional[Path] = typer.Option(None, "--output", help="Write the JSON to this file instead of stdout."),
 ):
     """Print the ISO 10300 (Method B1) load capacity rating sheet of a design with a [rating] section."""
-    from .job.rating import rating_from_design
+    from .gearset.rating import rating_from_design
 
     spec = _load(design)
     res = rating_from_design(spec)
@@ -292,8 +292,8 @@ MACHINE_DEFAULT = "aviation_23x65_facemilled"
 def machine(design: Optional[Path] = typer.Argument(
         None, help=f"Face-milled design file, or a bundled example's name. Default: the bundled {MACHINE_DEFAULT}.")):
     """Print the machine summary sheet (cutter and cradle settings per member and side) of a face-milled design."""
-    from .job.blank import blank_from_design
-    from .job.facemilled import setup_flanks
+    from .gearset.blank import blank_from_design
+    from .gearset.facemilled import setup_flanks
 
     spec = _load(MACHINE_DEFAULT if design is None else design)
     if spec.flank.kind != "face-milled":

@@ -64,7 +64,7 @@ def test_default_pair_te_level(report):
     half = math.pi / z1
     for name in ("drive", "coast"):
         t = report["tca"][name]
-        phi, te = np.array(t["pinion_rotation_rad"]), np.array(t["transmission_error_arcsec"])
+        phi, te = np.radians(t["pinion_rotation_deg"]), np.array(t["transmission_error_arcsec"])
         near = np.abs(phi) <= 0.4 * half
         a2, a1, a0 = np.polyfit(phi[near], te[near], 2)
         level = -a2 * half**2
@@ -99,5 +99,5 @@ def test_default_bearing_inside_the_flank(report, request):
     for name in ("drive", "coast"):
         t = report["tca"][name]
         assert t["status"] == "ok", (name, t["edge_contacts"])
-        assert t["contact_positions"] == t["positions"], (name, t["no_contact_positions_rad"])
-        assert not t["edge_contact_positions_rad"], name
+        assert t["contact_positions"] == t["positions"], (name, t["no_contact_positions_deg"])
+        assert not t["edge_contact_positions_deg"], name

@@ -68,7 +68,7 @@ def test_facemilled_ltca_and_one_sensitivity_case_fail(tmp_path, monkeypatch):
     report = json.loads((tmp_path / "out" / "report.json").read_text())
     assert report["ltca"]["status"] == "failed" and report["ltca"]["reason"] == "loaded TCA: no contact"
     sens = report["tca"]["misalignment_sensitivity"]
-    assert sens["shaft_angle"]["status"] == "failed" and sens["shaft_angle"]["value"] == 0.05
+    assert sens["shaft_angle"]["status"] == "failed" and sens["shaft_angle"]["value_deg"] == 0.05
     assert "peak_to_peak_arcsec" in sens["offset"]                  # the other cases are results
     assert {a["analysis"] for a in report["failed_analyses"]} == {
         "loaded TCA, drive side", "misalignment sensitivity, shaft_angle case"}

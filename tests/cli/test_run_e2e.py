@@ -48,8 +48,8 @@ def test_report_blank_matches_seed001(default_run):
     _, report = default_run
     blank = report["blank"]
     # seed 001 Table 1 (docs/theory/example.md): pitch angles 19°29'10.1", mean cone distance 115.9511 mm
-    assert blank["pinion"]["delta1"] == pytest.approx(19 + 29 / 60 + 10.1 / 3600, abs=1e-4)
-    assert blank["pair"]["Rm"] == pytest.approx(115.9511, abs=1e-4)
+    assert blank["pinion"]["delta1_deg"] == pytest.approx(19 + 29 / 60 + 10.1 / 3600, abs=1e-4)
+    assert blank["pair"]["Rm_mm"] == pytest.approx(115.9511, abs=1e-4)
 
 
 def test_report_logspiral_recipe_independent_check(default_run):

@@ -53,8 +53,8 @@ def test_machine_settings_in_report(fm_run):
     ms = report["machine_settings"]
     gear = ms["gear"]["convex"]
     assert gear["source"] == "given"
-    assert gear["settings"]["radial_setting"] == 115.078
-    assert gear["settings"]["cradle_angle"] == pytest.approx(59 + 20 / 60 + 7 / 3600)
+    assert gear["settings"]["radial_setting_mm"] == 115.078
+    assert gear["settings"]["cradle_angle_deg"] == pytest.approx(59 + 20 / 60 + 7 / 3600)
     derived = ms["gear"]["concave"]
     assert derived["source"].startswith("basic settings solved")
     # the solved coast flanks hit the design; the paper's given drive flanks are reported as they come out

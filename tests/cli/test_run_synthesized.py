@@ -26,8 +26,8 @@ def syn_run(tmp_path_factory):
 def test_synthesis_reported_with_design_values(syn_run):
     _, report = syn_run
     s = report["synthesis"]["drive"]
-    assert s["eta"] == pytest.approx(6.0, abs=1e-6)
-    assert s["semi_axes"][0] == pytest.approx(3.7, rel=1e-6)
+    assert s["eta_deg"] == pytest.approx(6.0, abs=1e-6)
+    assert s["semi_axes_mm"][0] == pytest.approx(3.7, rel=1e-6)
     assert s["te_magnitude_arcsec"] == pytest.approx(3.0, rel=1e-6)
     assert report["machine_settings"]["pinion"]["concave"]["source"].startswith("local synthesis")
 
@@ -36,7 +36,7 @@ def test_tca_of_synthesized_pair(syn_run):
     _, report = syn_run
     t = report["tca"]["drive"]
     te = np.array(t["transmission_error_arcsec"])
-    phi = np.array(t["pinion_rotation_rad"])
+    phi = np.radians(t["pinion_rotation_deg"])
     assert t["max_transmission_error_arcsec"] == pytest.approx(0.0, abs=1e-6)   # the mean contact point
     # near the mean point the TE is the designed parabola: 3" over one mesh cycle 2 pi / 23 (Table 2)
     near = np.abs(phi) < 0.05
@@ -60,10 +60,11 @@ def test_ltca_of_synthesized_pair(syn_run):
     lt = report["ltca"]
     # seed 001 §4.3.2: at the torque of a 0.00635 mm approach the loaded TE grows well beyond the unloaded one
     # (paper: -3.15" unloaded, -22.08" loaded)
-    assert lt["torque_Nm"] == pytest.approx(lt["torque_for_approach_Nm"])
-    assert lt["torque_for_approach_Nm"] > 1.0
-    assert lt["max_loaded_transmission_error_arcsec"] < 0
-    assert abs(lt["max_loaded_transmission_error_arcsec"]) > 3 * abs(lt["max_unloaded_transmission_error_arcsec"])
+    assert lt["torque_N_m"] == pytest.approx(lt["torque_for_approach_N_m"])
+    assert lt["torque_for_approach_N_m"] > 1.0
+    assert lt["loaded_transmission_error_largest_magnitude_arcsec"] < 0
+    assert abs(lt["loaded_transmission_error_largest_magnitude_arcsec"]) > 3 * abs(
+        lt["unloaded_transmission_error_largest_magnitude_arcsec"])
     share = np.array(lt["load_share"])
     assert np.allclose(share.sum(axis=1), 1.0, atol=1e-9)   # load sharing adds up at every position
     assert lt["positions_with_two_pairs_loaded"] >= 1

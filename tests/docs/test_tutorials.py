@@ -107,3 +107,26 @@ def test_misalignment_tutorial():
     assert R[1] == pytest.approx(115.9511, abs=1e-3)
     assert (R[0] - R[1]) * (R[2] - R[1]) < 0 and abs(R[2] - R[0]) > 0.05
     assert all(rec["peak_to_peak_arcsec"] > 0 for rec in recs)
+
+
+def test_gearset_tutorial(tmp_path):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = _tutorial("gearset.py")["main"](tmp_path)
+    # the basic settings are solved for the design angles: the achieved mean-point angles of every flank are the
+    # design's 30 deg spiral and 20 deg pressure angle within the solve's acceptance (0.05 deg)
+    for sides in r["machine"].to_dict()["flanks"].values():
+        for f in sides.values():
+            assert f["spiral_angle_deg"] == pytest.approx(30.0, abs=0.05)
+            assert f["pressure_angle_deg"] == pytest.approx(20.0, abs=0.05)
+    # the result object in arcsec and degrees against the solver's result in rad (one conversion, here by hand)
+    d, res = r["drive"], r["drive"].result
+    assert d.peak_to_peak_arcsec == pytest.approx((res.te_max - res.te_min) / ARCSEC, rel=1e-12)
+    # the default developed pair: the designed 8" parabolic TE over half a mesh cycle each side (docs/conventions.md)
+    assert d.peak_to_peak_arcsec == pytest.approx(8.0, rel=0.01)   # measured 7.994 (third-order terms)
+    # the tilted TCA is the sensitivity study's shaft-angle case (0.05 deg): two routes to the same solve
+    assert r["tilted"].peak_to_peak_arcsec == pytest.approx(
+        r["sensitivity"].to_dict()["shaft_angle"]["peak_to_peak_arcsec"], rel=1e-12)
+    assert (tmp_path / "gearset_tca_drive.png").stat().st_size > 0

@@ -140,11 +140,11 @@ def test_signal_during_a_run_leaves_no_leftovers(tmp_path, sig, code):
     # a run whose computation is slow (patched): the signal arrives while the output is being built
     script = textwrap.dedent("""
         import sys, time
-        import spiralbevel.job.run as run
+        import spiralbevel.gearset.blank as blank
         def slow(spec):
             print("started", flush=True)
             time.sleep(60)
-        run.blank_from_design = slow
+        blank.blank_from_design = slow
         from spiralbevel.cli import app
         sys.argv = ["spiralbevel", "run", "-q", "-o", sys.argv[1]]
         app()

@@ -76,7 +76,7 @@ def test_every_report_key_is_on_the_page(which, request):
     body = html.split("<main>", 1)[1]
     missing = set()
     header = html.split("<main>", 1)[0]
-    assert report["title"] in header and report["spiralbevel_version"] in header
+    assert report["design"]["title"] in header and report["spiralbevel_version"] in header
     for key, value in _leaves({k: v for k, v in report.items() if k not in HEADER_KEYS}):
         if key in ("units", "descriptions") or not key:
             continue

@@ -43,16 +43,16 @@ def test_report_entry_compares_with_the_rerated_sheet(sample, monkeypatch, tmp_p
     summary = SimpleNamespace(highlights=[], files=[])
     job_rating.rating_fe_root_report(spec, blank, report, summary, ltca, setups={}, out=tmp_path, plots=True)
     entry = report["rating"]["fe_root_stress"]
-    assert entry["status"] == "ok" and entry["T1_ltca"] == pytest.approx(150.0, rel=1e-12)
+    assert entry["status"] == "ok" and entry["T1_ltca_N_m"] == pytest.approx(150.0, rel=1e-12)
     # independent: the rating sheet of the design with its torque set to 150 N m
     sheet = job_rating.rating_from_design(spec.model_copy(update={"rating": spec.rating.model_copy(
         update={"pinion_torque": 150.0})}), blank)
     for member, sfx in (("pinion", "1"), ("gear", "2")):
         e = entry[member]
-        assert e["sigma_F0"] == pytest.approx(sheet[f"sigma_F0{sfx}"], rel=1e-12)
-        assert e["sigma_F"] == pytest.approx(sheet[f"sigma_F{sfx}"], rel=1e-12)
-        assert e["sigma1_max"] == stresses[member].sigma1_max
-        assert e["sigma1/sigma_F0"] == pytest.approx(e["sigma1_max"] / e["sigma_F0"], rel=1e-12)
+        assert e["sigma_F0_N_per_mm2"] == pytest.approx(sheet[f"sigma_F0{sfx}"], rel=1e-12)
+        assert e["sigma_F_N_per_mm2"] == pytest.approx(sheet[f"sigma_F{sfx}"], rel=1e-12)
+        assert e["sigma1_max_N_per_mm2"] == stresses[member].sigma1_max
+        assert e["sigma1/sigma_F0"] == pytest.approx(e["sigma1_max_N_per_mm2"] / e["sigma_F0_N_per_mm2"], rel=1e-12)
         assert e["max_equilibrium_error_N"] < 1e-8
     json.dumps(entry)  # JSON-ready
     assert summary.files == ["root_stress.png"] and (tmp_path / "root_stress.png").stat().st_size > 0

@@ -20,7 +20,7 @@ from pydantic import BaseModel, ValidationError
 from ..errors import DesignError, Problem
 from .design_schema import DesignFile
 
-__all__ = ["load_design", "parse_design", "read_text_file", "default_design_text", "bundled_designs",
+__all__ = ["load_design", "parse_design", "validate_design", "read_text_file", "default_design_text", "bundled_designs",
            "DEFAULT_DESIGN_NAME", "MAX_DESIGN_BYTES", "MAX_NESTING", "MAX_PROBLEMS"]
 
 DEFAULT_DESIGN_NAME = "aviation_23x65_logspiral.toml"
@@ -159,6 +159,17 @@ def parse_design(text: str, source: str = "<string>") -> DesignFile:
     except RecursionError:
         raise DesignError.single("design file", source, f"arrays and tables nested at most {MAX_NESTING} deep",
                                  reason="nested too deep") from None
+    return validate_design(data)
+
+
+def validate_design(data: dict) -> DesignFile:
+    """Validate a design given as a dict of design-file sections (degrees, mm).
+
+    Raises
+    ------
+    DesignError
+        Every problem (at most :data:`MAX_PROBLEMS` listed), each naming the design-file key.
+    """
     try:
         return DesignFile.model_validate(data)
     except ValidationError as err:

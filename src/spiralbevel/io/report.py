@@ -1,9 +1,10 @@
 """``report.json``: every computed quantity with units, written atomically.
 
-Values are plain JSON: floats, lists, dicts. Each section may carry a ``"units"`` mapping from key to unit string.
-numpy scalars and arrays are converted. JSON has no NaN: a value that does not exist (for example the TE of a tooth
-pair at a position where it has no contact) is written as ``null``; infinities (the contact ellipse of a line
-contact) likewise.
+Values are plain JSON: floats, lists, dicts. Units are part of the names (``_mm``, ``_deg``, ``_arcsec``,
+``_N_per_mm2``, ``_N_m``; dimensionless names bare), angles in degrees; the JSON Schema shipped with the package
+(:func:`report_schema`) states the layout. numpy scalars and arrays are converted. JSON has no NaN: a value that
+does not exist (for example the TE of a tooth pair at a position where it has no contact) is written as ``null``;
+infinities (the contact ellipse of a line contact) likewise.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["to_jsonable", "dumps_report", "write_report"]
+__all__ = ["to_jsonable", "dumps_report", "write_report", "report_schema"]
 
 
 def to_jsonable(obj):
@@ -49,3 +50,10 @@ def write_report(path, report: dict) -> None:
     from .atomic import atomic_write_text
 
     atomic_write_text(path, dumps_report(report))
+
+
+def report_schema() -> dict:
+    """The JSON Schema (draft 2020-12) of report.json, shipped as ``spiralbevel/data/report.schema.json``."""
+    from importlib import resources
+
+    return json.loads(resources.files("spiralbevel.data").joinpath("report.schema.json").read_text(encoding="utf-8"))

@@ -237,7 +237,8 @@ def render_report_html(report: dict, out_dir=None, view: dict | None = None) -> 
     design = json.dumps(report.get("design", {}), indent=2, ensure_ascii=False)
     add_section("design", "Design (input)", f"<details><summary>design file as read (JSON)</summary><pre>"
                 f"{escape(design)}</pre></details>")
-    title = str(report.get("title", "spiralbevel report"))
+    design_title = report.get("design", {}).get("title") if isinstance(report.get("design"), dict) else None
+    title = str(report.get("title") or design_title or "spiralbevel report")
     return _PAGE.format(title=escape(title), version=escape(str(report.get("spiralbevel_version", ""))),
                         css=_asset("report.css"), nav=" ".join(nav), body="\n".join(body),
                         script=_asset("viewer.js") if view else "")

@@ -16,8 +16,10 @@ from html import escape
 __all__ = ["unit_of", "label_of", "format_value", "render_tree", "is_scalar"]
 
 #: key suffix -> unit shown; longest first (``_N_per_mm2`` before ``_mm2`` before ``_mm``)
-UNIT_SUFFIXES = (("_N_per_mm2", "N/mm²"), ("_per_mm", "1/mm"), ("_arcsec", "″"), ("_deg", "°"), ("_rad", "rad"),
-                 ("_mm2", "mm²"), ("_mm3", "mm³"), ("_mm", "mm"), ("_um", "µm"), ("_Nm", "N m"), ("_N", "N"),
+UNIT_SUFFIXES = (("_N_per_mm2", "N/mm²"), ("_per_mm", "1/mm"), ("_arcsec", "″"), ("_deg", "°"),
+                 ("_mm_per_rad", "mm/rad"), ("_per_rad", "1/rad"), ("_rad", "rad"),
+                 ("_mm2", "mm²"), ("_mm3", "mm³"), ("_mm", "mm"), ("_um", "µm"), ("_N_m", "N m"), ("_Nm", "N m"),
+                 ("_N", "N"), ("_m_per_s", "m/s"), ("_per_min", "1/min"),
                  ("_s", "s"), ("_percent", "%"))
 _DIGIT = re.compile(r"(?<=[A-Za-z_])[12]$")
 #: keys that hold metadata of their siblings, not results

@@ -8,17 +8,17 @@ def check_design(spec) -> list:
     settings, generated flanks (mean points) and synthesis. Raises the first error; returns the design warnings'
     texts of the blank."""
     from ..errors import DesignError
-    from .blank import blank_from_design
-    from .problems import with_design_keys
+    from ..gearset.blank import blank_from_design
+    from ..gearset.problems import with_design_keys
 
     blank = blank_from_design(spec)
     try:
         if spec.flank.kind == "log-spiral":
-            from .logspiral import design_pair
+            from ..gearset.logspiral import design_pair
 
             design_pair(spec, blank)
         else:
-            from .facemilled import setup_flanks
+            from ..gearset.facemilled import setup_flanks
 
             setup_flanks(spec, blank)
     except DesignError as err:

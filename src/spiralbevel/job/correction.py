@@ -6,8 +6,8 @@ import math
 
 from ..conventions import Member, Side
 from ..errors import DesignError
-from .blank import blank_from_design
-from .facemilled import setup_flanks
+from ..gearset.blank import blank_from_design
+from ..gearset.facemilled import setup_flanks
 
 
 def correct_from_measurement(spec, member: str, side: str, measured_csv, parameters=None, regularization=0.0,

@@ -99,8 +99,8 @@ def _pair(spec_json: str, side: str):
     from ..io.design_schema import DesignFile
     from ..meshing.generated_surface import phased_for_pair
     from ..meshing.kinematics import BevelPairKinematics
-    from .blank import blank_from_design
-    from .facemilled import PAIR_SIDES, setup_flanks
+    from ..gearset.blank import blank_from_design
+    from ..gearset.facemilled import PAIR_SIDES, setup_flanks
 
     spec = DesignFile.model_validate_json(spec_json)
     blank = blank_from_design(spec)

@@ -32,7 +32,7 @@ from ..meshing.flank_access import flank_access, logspiral_parameters, normal_li
 __all__ = ["MeasurementGrid", "measurement_grid", "measurement_grid_logspiral", "measure_deviation"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class MeasurementGrid:
     """Nominal CMM grid of one flank (member frame).
 
@@ -82,6 +82,10 @@ class MeasurementGrid:
     def size(self) -> int:
         """Number of points."""
         return int(self.R.size)
+
+    def __repr__(self) -> str:
+        return (f"MeasurementGrid({Member(self.member).value} {Side(self.side).value}, {self.shape[0]} x "
+                f"{self.shape[1]} points)")
 
     def index_of(self, label: str) -> tuple:
         """(i, j) zero-based array index of a point label such as ``"F5P3"``."""

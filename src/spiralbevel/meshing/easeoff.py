@@ -103,7 +103,7 @@ def conjugate_pinion(gear, kinematics: BevelPairKinematics, branch: int | None =
     return FlankAccess(surface, ga.samples), branch
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class EaseOff:
     """Ease-off map of a pinion flank over its projected tooth (pinion member frame).
 
@@ -145,6 +145,11 @@ class EaseOff:
     mean_h: float
     rigid_rotation: float
     branch: int
+
+    def __repr__(self) -> str:
+        v = self.values[np.isfinite(self.values)]
+        rng = f"{v.min() * 1000:.4g} .. {v.max() * 1000:.4g} um" if v.size else "no values"
+        return f"EaseOff({self.values.shape[0]} x {self.values.shape[1]} grid, {rng}, + = clearance)"
 
     def quadratic_fit(self) -> dict:
         """Least-squares fit e = c0 + c1 x + c2 y + c3 x^2 + c4 x y + c5 y^2 with x = R - mean_R, y = h - mean_h.

@@ -31,7 +31,7 @@ class ContactStatus(IntEnum):
     NO_CONTACT = 3
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class TCAResult:
     """Tooth contact analysis over one mesh cycle and several tooth pairs.
 
@@ -198,12 +198,20 @@ class TCAResult:
         """Peak-to-peak TE of the contact envelope over positions with contact and the transfer points, rad."""
         return self.te_max - self.te_min
 
+    @property
+    def peak_to_peak_arcsec(self) -> float:
+        """:attr:`peak_to_peak` in arcsec (the unit of :meth:`summary` and of the reports)."""
+        return self.peak_to_peak / ARCSEC
+
     def summary(self) -> str:
         n = len(self.phi1)
         counts = {s.name: int(np.sum(self.status == s)) for s in ContactStatus}
-        return (f"TCA {self.z1}/{self.z2}: {n} positions, pairs {list(self.pairs)}, status {counts}, "
+        return (f"TCA {self.z1}/{self.z2}: {n} positions, pairs {[int(k) for k in self.pairs]}, status {counts}, "
                 f"TE peak-to-peak {self.peak_to_peak / ARCSEC:.4f} arcsec, transfers at "
                 f"{np.round(self.transfer_phi1, 6).tolist()} rad")
+
+    def __repr__(self) -> str:
+        return f"TCAResult({self.summary()})"
 
     def plot(self, outline1=None, outline2=None, ax=None, **kw):
         """TE curves, contact paths on the projected flanks and contact ellipses; see

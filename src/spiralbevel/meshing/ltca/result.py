@@ -11,7 +11,7 @@ __all__ = ["LTCAResult", "ARCSEC"]
 ARCSEC = np.pi / (180.0 * 3600.0)  # rad per arcsecond
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class LTCAResult:
     """Loaded tooth contact analysis over a mesh cycle.
 
@@ -79,6 +79,11 @@ class LTCAResult:
     def loaded_te_amplitude(self) -> float:
         """Peak-to-peak loaded transmission error, arcsec."""
         return float(np.ptp(self.te_loaded))
+
+    def __repr__(self) -> str:
+        return (f"LTCAResult({len(self.pinion_angles)} positions, gear torque {self.torque / 1000.0:.4g} N m, "
+                f"loaded TE peak-to-peak {self.loaded_te_amplitude:.4g} arcsec, peak pressure "
+                f"{self.peak_pressure:.4g} N/mm^2)")
 
     def plot(self, **kwargs):
         """Transmission errors, load sharing and the pressure over the flank (see :mod:`spiralbevel.viz.ltca_plot`)."""

@@ -20,6 +20,7 @@ from scipy.optimize import brentq
 from ...conventions import Member
 from ...errors import DesignError, GeometryError
 from ..kinematics import BevelPairKinematics
+from ..pair import pair_kinematics
 from ._relations import curvature_tensor
 
 __all__ = ["MeanContact", "mean_contact", "path_reference"]
@@ -127,7 +128,7 @@ def mean_contact(gear_flank, blank, depth: float = 0.0) -> MeanContact:
         raise DesignError.single("gear_flank.member", gear_flank.member.value, "gear", "-")
     if not np.isfinite(depth):
         raise DesignError.single("depth", depth, "finite", "mm")
-    kin = BevelPairKinematics(float(blank.Sigma), int(blank.z1), int(blank.z2))
+    kin = pair_kinematics(blank)
     mp = gear_flank.mean_point(depth)
     r2, n2 = np.asarray(mp.point, float), np.asarray(mp.normal, float)
     p = kin.pitch_line

@@ -11,14 +11,16 @@ from . import outputs
 from .partial import attempt, mark_failed
 
 
-def run_logspiral(spec, blank, out, steps, report, summary):
-    """Design the log-spiral pair, evaluate its flanks and write every requested output into ``out``."""
+def run_logspiral(gs, out, steps, report, summary):
+    """Design the log-spiral pair of the gear set ``gs``, evaluate its flanks and write every requested output into
+    ``out``."""
+    spec = gs.design
     o = spec.output
     n_face, n_profile = o.grid
     with steps.step("log-spiral pair design"):
-        pair = ls.design_pair(spec, blank)
+        pair = gs.logspiral_pair
     with steps.step("flank geometry and curvatures"):
-        grids = ls.flank_grids(pair, n_face, n_profile)
+        grids = gs.grids(n_face, n_profile)
         report["logspiral"] = ls.flank_report(pair, grids)
     with steps.step("conjugacy check (envelope solver)"):
         from .conjugacy import conjugacy_report

@@ -13,7 +13,7 @@ from ..conventions import Member, Side
 from ..errors import DesignError, Problem
 from ..io.design_schema import DesignFile
 
-__all__ = ["rating_input_from_design", "rating_from_design", "rating_report", "rating_ltca_report",
+__all__ = ["rating_input_from_design", "rating_from_design", "rating_section", "rating_report", "rating_ltca_report",
            "rating_fe_root_report", "fe_root_stress_from_job"]
 
 # RatingInput field -> design-file path
@@ -87,12 +87,22 @@ def rating_from_design(spec: DesignFile, blank=None):
     return rate_iso10300(blank, rating_input_from_design(spec, blank))
 
 
+def rating_section(res) -> dict:
+    """The ``rating`` section of report.json of a :class:`~spiralbevel.rating.RatingResult`: ISO 10300 symbols
+    with the unit as a suffix (``sigma_H_N_per_mm2``; dimensionless factors bare), angles in degrees."""
+    from .units import suffixed
+
+    d = res.to_dict(degrees=True)
+    units, notes = d.pop("units"), d.pop("notes")
+    return {"standard": "ISO 10300:2014 Method B1", **suffixed(d, units), "notes": notes}
+
+
 def rating_report(spec: DesignFile, blank, report: dict, summary) -> None:
     """Add the ``rating`` section to ``report`` when the design has ``[rating]`` (hook of the run driver)."""
     if spec.rating is None:
         return
     res = rating_from_design(spec, blank)
-    report["rating"] = {"standard": "ISO 10300:2014 Method B1", **res.to_dict()}
+    report["rating"] = rating_section(res)
     summary.highlights.append(f"rating (ISO 10300 B1): S_H = {res['S_H']:.3f}, S_F1 = {res['S_F1']:.3f}, "
                               f"S_F2 = {res['S_F2']:.3f}")
 
@@ -110,16 +120,19 @@ def rating_ltca_report(spec: DesignFile, blank, report: dict, summary, ltca_resu
                                                          "of the coast side"}
         return
     from ..rating import compare_with_ltca
+    from .units import suffixed
 
     cmp = compare_with_ltca(blank, rating_input_from_design(spec, blank), ltca_result)
-    report["rating"]["ltca_comparison"] = {"status": "ok", **cmp, "units": {
-        "T1_ltca": "N m", "p_max_ltca": "N/mm^2", "phi1_at_p_max": "deg", "pairs_at_p_max": "-",
-        "sigma_H0": "N/mm^2", "sigma_H": "N/mm^2", "p_max/sigma_H0": "-", "p_max/sigma_H": "-"}}
+    report["rating"]["ltca_comparison"] = {"status": "ok", **suffixed(cmp, LTCA_COMPARISON_UNITS)}
     summary.highlights.append(f"LTCA peak pressure {cmp['p_max_ltca']:.0f} N/mm^2 = {cmp['p_max/sigma_H0']:.2f} "
                               f"sigma_H0, {cmp['p_max/sigma_H']:.2f} sigma_H (ISO 10300 B1 at the LTCA torque)")
     if setups is not None:
         rating_fe_root_report(spec, blank, report, summary, ltca_result, setups, out, plots)
 
+
+#: units of the figures of ``rating.ltca_comparison``
+LTCA_COMPARISON_UNITS = {"T1_ltca": "N m", "p_max_ltca": "N/mm^2", "phi1_at_p_max": "deg", "pairs_at_p_max": "-",
+                         "sigma_H0": "N/mm^2", "sigma_H": "N/mm^2", "p_max/sigma_H0": "-", "p_max/sigma_H": "-"}
 
 #: units of the figures of ``rating.fe_root_stress`` (per member)
 FE_ROOT_UNITS = {
@@ -147,8 +160,12 @@ def rating_fe_root_report(spec: DesignFile, blank, report: dict, summary, ltca_r
         summary.highlights.append(f"FE root stress not computed: {err}")
         return
     cmp = compare_root_stress(blank, rating_input_from_design(spec, blank), ltca_result, stresses)
+    from .units import suffixed
+
+    section = {k: (suffixed(v, FE_ROOT_UNITS) if isinstance(v, dict) else v) for k, v in
+               suffixed(cmp, FE_ROOT_UNITS).items()}
     report["rating"]["fe_root_stress"] = {
-        "status": "ok", **cmp, "fillet_rows": FE_ROOT_FILLET_ROWS, "units": FE_ROOT_UNITS,
+        "status": "ok", **section, "fillet_rows": FE_ROOT_FILLET_ROWS,
         "model": "3-tooth segments with their generated root fillets, quadratic tetrahedra clamped at the rim, the "
                  "LTCA's normal contact forces (no friction); maximum principal stress nodal-averaged, largest over "
                  "every mesh position with tooth 0 in the role of each loaded pair"}
@@ -174,7 +191,7 @@ def fe_root_stress_from_job(spec: DesignFile, blank, setups, ltca_result, fe_opt
     """FE root stress of pinion and gear (:func:`~spiralbevel.rating.fe_root_stress.fe_root_stress`) under the
     contact forces of the job's LTCA: the flank grids of the LTCA's FE model (``[ltca] flank_grid``) with
     ``FE_ROOT_FILLET_ROWS`` fillet rows below, in the same (phased) member frames."""
-    from ..meshing.generated_surface import phased_for_pair
+    from ..meshing.pair import meshing_pair
     from ..rating.fe_root_stress import fe_root_stress
     from .facemilled import tooth_rotation
     from .ltca import _tooth_grids
@@ -183,7 +200,8 @@ def fe_root_stress_from_job(spec: DesignFile, blank, setups, ltca_result, fe_opt
     lt = spec.ltca
     assert lt is not None  # called after the LTCA of the job, which needs [ltca]
     s1, s2 = SIDES[lt.side]
-    c1, c2 = phased_for_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank)
+    pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
+    c1, c2 = pair.pinion, pair.gear
     nf, npf = lt.flank_grid
     # the last fillet row and the first blade row of ToothFlank.grid coincide: keep one of them
     grids = {k: np.delete(st.flank.grid(nf, npf, n_fillet=FE_ROOT_FILLET_ROWS, curvature=False).points,

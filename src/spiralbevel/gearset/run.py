@@ -1,5 +1,5 @@
-"""Orchestration of ``spiralbevel run``: design file → blank → flanks → analyses → files, written whole or not at
-all."""
+"""The report directory of a gear set (``spiralbevel run``, ``GearSet.report``): design → blank → flanks → analyses
+→ files, written whole or not at all."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..io.design_schema import DesignFile
-from .blank import blank_from_design, require_no_offset
+from .blank import blank_section, require_no_offset
 from ..errors import DesignError
 from .partial import PartialLog
 from .problems import with_design_keys
@@ -42,8 +42,9 @@ class RunSummary:
     partial: PartialLog = field(default_factory=PartialLog)
 
 
-def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
-    """Compute everything ``spec`` asks for and write it to the directory ``out``.
+def write_run(gearset, out, progress: bool = True) -> RunSummary:
+    """Compute everything the design of ``gearset`` (a :class:`~spiralbevel.gearset.GearSet`) asks for and write it
+    to the directory ``out`` (``spiralbevel run``, :meth:`GearSet.report <spiralbevel.gearset.GearSet.report>`).
 
     The directory is built aside and swapped in only when every file was written (``io.atomic.atomic_directory``):
     a failure leaves any previous ``out`` untouched and no partial output. ``out`` must be new, empty, or a previous
@@ -53,6 +54,7 @@ def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
     A failing secondary analysis (conjugacy check, TCA of one side, loaded TCA, a misalignment case) does not stop the
     run: its report entry says ``"status": "failed"`` with the reason, and ``summary.partial`` lists it.
     """
+    spec: DesignFile = gearset.design
     out = Path(out)
     summary = RunSummary(out=out)
     kind = spec.flank.kind
@@ -61,28 +63,26 @@ def run_design(spec: DesignFile, out, progress: bool = True) -> RunSummary:
     section = "gear_set" if kind == "log-spiral" else "face_milling"
     steps = Steps(n_steps, progress)
     try:
-        return _run(spec, out, summary, kind, steps, manifest)
+        return _run(gearset, out, summary, kind, steps, manifest)
     except DesignError as err:
         raise with_design_keys(err, section, f"in the step '{steps.current}'") from err
 
 
-def _run(spec, out, summary, kind, steps, manifest):
+def _run(gs, out, summary, kind, steps, manifest):
     from ..io.atomic import OUTPUT_MARKER, atomic_directory
-    from ..io.dimension_sheet import dimension_sheet_json
     from ..io.report import write_report
     from ..io.report_html import write_run_report_html
 
     with atomic_directory(out, marker=OUTPUT_MARKER, manifest=manifest) as tmp, steps:
         tmp = Path(tmp)
         with steps.step("blank geometry (ISO 23509)"):
-            blank = blank_from_design(spec)
+            blank = gs.blank
             require_no_offset(blank, "spiralbevel run")
+        spec = gs.design
         report = {
             "spiralbevel_version": __version__,
-            "title": spec.title,
             "design": spec.model_dump(mode="json"),
-            "blank": dimension_sheet_json(blank),
-            "blank_warnings": list(getattr(blank, "warnings", ())),
+            "blank": blank_section(blank),
         }
         summary.highlights.append(
             f"blank: delta1 = {math.degrees(blank.delta1):.4f} deg, delta2 = {math.degrees(blank.delta2):.4f} deg, "
@@ -91,11 +91,11 @@ def _run(spec, out, summary, kind, steps, manifest):
         if kind == "log-spiral":
             from .run_logspiral import run_logspiral
 
-            run_logspiral(spec, blank, tmp, steps, report, summary)
+            run_logspiral(gs, tmp, steps, report, summary)
         else:
             from .run_facemilled import run_facemilled
 
-            run_facemilled(spec, blank, tmp, steps, report, summary)
+            run_facemilled(gs, tmp, steps, report, summary)
         with steps.step("report.json, report.html"):
             summary.files += ["report.json", "report.html"]
             report["files"] = sorted(summary.files)

@@ -1,4 +1,4 @@
-"""Loaded tooth contact analysis of a face-milled pair in the main job (design-file section ``[ltca]``)."""
+"""Loaded tooth contact analysis of a face-milled pair (design-file section ``[ltca]``) and its report section."""
 
 from __future__ import annotations
 
@@ -9,8 +9,7 @@ import numpy as np
 from .._core.rotations import rot_z
 from ..conventions import Member, Side
 from ..errors import NoContactError, SpiralBevelWarning
-from ..meshing.generated_surface import phased_for_pair
-from ..meshing.kinematics import BevelPairKinematics
+from ..meshing.pair import meshing_pair
 from ..meshing.tca import solve_tca
 from ..meshing.tca_result import ContactStatus
 from .facemilled import tooth_rotation
@@ -24,7 +23,7 @@ def _rz(a):
 def _tooth_grids(grids, member, tca_side, surface_rotation, rot):
     """(convex, concave) point grids of one tooth in the TCA surface's frame: the TCA flank carries the surface's
     phasing rotation; the other flank of the tooth is placed by the tooth rotation ``rot`` (concave = convex turned
-    by rot, job.facemilled.tooth_rotation)."""
+    by rot, gearset.facemilled.tooth_rotation)."""
     cx, cc = grids[(member, Side.CONVEX)], grids[(member, Side.CONCAVE)]
     if tca_side is Side.CONCAVE:
         return cx @ _rz(surface_rotation - rot).T, cc @ _rz(surface_rotation).T
@@ -49,14 +48,20 @@ def _mean_extents(model):
 
 
 def run_ltca_job(spec, blank, setups):
-    """Unloaded TCA, FE tooth compliance and the loaded cycle. Returns (LTCAResult, report section)."""
+    """Unloaded TCA, FE tooth compliance and the loaded cycle of the design's ``[ltca]`` section. Returns
+    (LTCAResult or None, report section)."""
+    return run_ltca(blank, setups, spec.ltca)
+
+
+def run_ltca(blank, setups, lt):
+    """Unloaded TCA, FE tooth compliance and the loaded cycle with the options ``lt`` (an ``[ltca]`` section,
+    :class:`~spiralbevel.io.design_schema.LTCASpec`). Returns (LTCAResult or None, report section)."""
     from ..meshing.ltca import Material, ltca_model
 
-    lt = spec.ltca
     s1, s2 = SIDES[lt.side]
-    c1, c2 = phased_for_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank)
-    kin = BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
-    tca = solve_tca(c1, c2, kin, n_positions=lt.positions, start=np.r_[c1.reference_params, c2.reference_params, 0.0])
+    pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
+    c1, c2, kin = pair.pinion, pair.gear, pair.kinematics
+    tca = solve_tca(c1, c2, kin, n_positions=lt.positions, start=pair.start)
     nf, npf = lt.flank_grid
     grids = {k: st.flank.grid(nf, npf, curvature=False).points for k, st in setups.items()}
     pin = _tooth_grids(grids, Member.PINION, s1, c1.rotation, tooth_rotation(blank, setups, Member.PINION))
@@ -81,10 +86,11 @@ def run_ltca_job(spec, blank, setups):
         raise NoContactError(f"loaded TCA, {lt.side} side: no contact at any of the {lt.positions} positions")
     ext = te_l[fin_l][np.argmax(np.abs(te_l[fin_l]))]
     section = {
-        "side": lt.side, "torque_Nm": T / 1000.0, "torque_for_approach_Nm": T_app / 1000.0,
+        "side": lt.side, "torque_N_m": T / 1000.0, "torque_for_approach_N_m": T_app / 1000.0,
         "approach_mm": 0.00635,
-        "max_loaded_transmission_error_arcsec": float(ext),
-        "max_unloaded_transmission_error_arcsec": float(te_u[fin_u][np.argmax(np.abs(te_u[fin_u]))]),
+        # the signed TE of largest magnitude over the cycle (negative: the gear lags), loaded and unloaded
+        "loaded_transmission_error_largest_magnitude_arcsec": float(ext),
+        "unloaded_transmission_error_largest_magnitude_arcsec": float(te_u[fin_u][np.argmax(np.abs(te_u[fin_u]))]),
         "loaded_te_peak_to_peak_arcsec": float(np.ptp(te_l[fin_l])),
         "status": "ok",
         "max_contact_pressure_N_per_mm2": float(np.nanmax(res.max_pressure)),
@@ -92,12 +98,11 @@ def run_ltca_job(spec, blank, setups):
         # edge) the pressure peaks at the edge and grows with the grid; the surface-contact peak is the converged one
         "max_contact_pressure_surface_N_per_mm2": _surface_peak(res, tca),
         "edge_contact_positions": int(np.sum(tca.status == ContactStatus.EDGE)),
-        # the pressure is that of the solved field on each contact's own grid (uniform-pressure cells)
-        "contact_grid": {"points": list(model.grid), "extents": "per position and pair: 1.25 x the Hertz ellipse of "
-                         "that contact at an approach of 4 x 0.00635 mm",
-                         "half_extents_at_mean_mm": _mean_extents(model)},
+        # the pressure is that of the solved field on each contact's own grid (uniform-pressure cells); the grid of
+        # each position and pair spans 1.25 x the Hertz ellipse of that contact at an approach of 4 x 0.00635 mm
+        "contact_grid": {"points": list(model.grid), "half_extents_at_mean_mm": _mean_extents(model)},
         "positions_with_two_pairs_loaded": int(np.sum(np.sum(res.load_share > 1e-3, axis=1) > 1)),
-        "pinion_rotation_rad": res.pinion_angles, "loaded_transmission_error_arcsec": te_l,
+        "pinion_rotation_deg": np.degrees(res.pinion_angles), "loaded_transmission_error_arcsec": te_l,
         "unloaded_transmission_error_arcsec": te_u, "load_share": res.load_share,
         "pair_names": list(res.pair_names),
         "material": {"youngs_modulus_N_per_mm2": lt.youngs_modulus, "poisson_ratio": lt.poisson_ratio},

@@ -63,7 +63,6 @@ def flank_report(pair, grids):
         "transverse_pressure_angle_deg": _deg(pair.transverse_pressure_angle),
         "plane_spiral_angle_deg": _deg(pair.plane_spiral_angle),
         "members": {},
-        "units": {"curvature": "1/mm (convex = positive)", "length": "mm", "angle": "deg"},
     }
     for m in MEMBERS:
         md = pair.member(m)
@@ -86,8 +85,8 @@ def flank_report(pair, grids):
             entry["flanks"][s.value] = {
                 "rho0_mm": f.surface.rho0,
                 "rotation_deg": _deg(f.rotation),
-                "domain": {"phi_min_rad": d.phi_min, "phi_max_rad": d.phi_max,
-                           "psi_min_rad": d.psi_min, "psi_max_rad": d.psi_max},
+                "domain": {"phi_min_deg": _deg(d.phi_min), "phi_max_deg": _deg(d.phi_max),
+                           "psi_min_deg": _deg(d.psi_min), "psi_max_deg": _deg(d.psi_max)},
                 "mean_point": {
                     "point_mm": mean.point, "normal": mean.normal,
                     "k1_per_mm": float(mean.k1), "k2_per_mm": float(mean.k2),

@@ -95,8 +95,7 @@ def forging_section(spec, pair, reliefs, crowning, out, summary, plots):
     mf = spec.manufacturing
     theta = math.radians(mf.draft_angle)
     section = {"die_direction": list(mf.die_direction), "draft_angle_deg": mf.draft_angle,
-               "units": {"deviation": "micrometre along the outward normal, + = material added", "volume": "mm^3"},
-               "flanks": {}}
+               "deviation_sign": "along the outward normal, positive = material added", "flanks": {}}
     maps, devs = [], []
     for (m, s), rd in reliefs.items():
         f = pair.flank(m, s)
@@ -187,8 +186,8 @@ def mismatch_section(spec, pair, crowning, reliefs, out, summary, plots):
     section["tca"]["interference_free"] = bool(gap < 0.2 * ARCSEC)  # first-touch grid method: <0.1" measured
     sens = {}
     for r in study.rows:
-        entry = {"size": r.value if r.name != "shaft_angle" else math.degrees(r.value),
-                 "unit": "deg" if r.name == "shaft_angle" else "mm",
+        entry = {("size_deg" if r.name == "shaft_angle" else "size_mm"):
+                 r.value if r.name != "shaft_angle" else math.degrees(r.value),
                  "line_contact_te_growth_arcsec": r.line_growth / ARCSEC,
                  "mismatched_te_growth_arcsec": r.mismatched_growth / ARCSEC,
                  "line_contact_te_ptp_arcsec": r.line_ptp / ARCSEC,

@@ -1,4 +1,4 @@
-"""Face-milled designs in the main job: cutters and machine settings per flank, generated flanks, tooth assembly."""
+"""Face-milled designs: cutters and machine settings per flank, generated flanks, tooth assembly."""
 
 from __future__ import annotations
 
@@ -101,19 +101,16 @@ def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK
     itself fails or the pinion flank does not cover the whole face.
     """
     from ..errors import NoContactError
-    from ..meshing.generated_surface import phased_for_pair
-    from ..meshing.kinematics import BevelPairKinematics
+    from ..meshing.pair import meshing_pair
     from ..meshing.tca import solve_tca
 
     try:   # the synthesized flank must cover the whole face (the grid of the report, the CAD and the TCA outline)
         pinion_flank.grid(9, 5, curvature=False)
     except GeometryError:
         return n_positions
-    kin = BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
-    c1, c2 = phased_for_pair(pinion_flank, gear_flank)
-    start = np.r_[c1.reference_params, c2.reference_params, 0.0]
+    pair = meshing_pair(pinion_flank, gear_flank, blank)
     try:
-        res = solve_tca(c1, c2, kin, n_positions=n_positions, start=start)
+        res = solve_tca(pair.pinion, pair.gear, pair.kinematics, n_positions=n_positions, start=pair.start)
     except (NoContactError, ConvergenceError):
         return n_positions
     return int(np.sum(~np.isfinite(res.te) | res.edge_contact))
@@ -423,6 +420,7 @@ def flank_report(setups, blank=None):
     """``flanks`` and ``machine_settings`` report sections (degrees, mm, 1/mm); with the blank, each flank's design
     against achieved mean-point angles and root position (``design_vs_achieved``)."""
     from ..generation.basic_settings_solve import flank_fit
+    from .units import MACHINE_SETTING_UNITS, suffixed
 
     flanks, machines = {}, {}
     for (m, s), st in setups.items():
@@ -434,12 +432,13 @@ def flank_report(setups, blank=None):
             "pressure_angle_root_deg": math.degrees(mp.pressure_angle_root),
             "hand": "RH" if mp.hand_sign > 0 else "LH",
             "k1_per_mm": mp.k1, "k2_per_mm": mp.k2, "meshing_residual": res,
-            "surface_parameters": {"u_mm": mp.u, "theta_rad": mp.theta, "psi_c_rad": mp.psi_c},
+            "surface_parameters": {"u_mm": mp.u, "theta_deg": math.degrees(mp.theta),
+                                   "psi_c_deg": math.degrees(mp.psi_c)},
         }
         c = st.cutter
         machines.setdefault(m.value, {})[s.value] = {
             "source": st.source,
-            "settings": st.settings.to_dict(degrees=True),
+            "settings": suffixed(st.settings.to_dict(degrees=True), MACHINE_SETTING_UNITS),
             "cutter": {"blade": c.blade.value, "point_radius_mm": c.point_radius,
                        "blade_angle_deg": math.degrees(c.blade_angle), "point_width_mm": c.point_width,
                        "edge_radius_mm": c.edge_radius,
@@ -450,6 +449,11 @@ def flank_report(setups, blank=None):
         if fit is not None:
             flanks[m.value][s.value]["design_vs_achieved"] = fit.to_dict()
             flanks[m.value][s.value]["checks"] = flank_checks(fit, m, s)
+    if blank is not None:   # the concave flank of each tooth turned to the mean normal thickness (tooth_rotation)
+        for m in MEMBERS:
+            if (m, Side.CONVEX) in setups and (m, Side.CONCAVE) in setups:
+                rot = tooth_rotation(blank, setups, m)
+                flanks[m.value]["concave"]["tooth_rotation_deg"] = float(rot * 180.0 / 3.141592653589793)
     if blank is not None and "pinion" in flanks and {"concave", "convex"} <= set(flanks["pinion"]):
         from ..design.blank_checks import achieved_undercut
 
@@ -473,5 +477,4 @@ def flank_report(setups, blank=None):
         for side, d in sides.items():
             for text in d.get("checks", ()):
                 warnings.warn(f"{m_name} {side}: {text}", DesignWarning, stacklevel=2)
-    units = {"settings": "mm; cradle_angle and machine_root_angle in deg; ratio_of_roll dimensionless"}
-    return flanks, dict(machines, units=units)
+    return flanks, machines

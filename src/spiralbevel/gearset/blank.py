@@ -130,3 +130,21 @@ def _path(field: str) -> str:
         if sym == base:
             return f"{field} (computed {desc}, from gear_set)"
     return field
+
+
+def blank_section(blank) -> dict:
+    """The ``blank`` section of report.json: the ISO 23509 dimension sheet keyed by ISO symbol with the unit as a
+    suffix (``delta1_deg``, ``Re1_mm``; dimensionless symbols bare), the descriptions under the same names, the
+    method and the warnings."""
+    from ..io.dimension_sheet import dimension_sheet_json
+    from .units import suffixed
+
+    sheet = dimension_sheet_json(blank)
+    units = sheet["units"]
+    out = {"method": sheet["method"]}
+    for group in ("pair", "pinion", "gear"):
+        out[group] = suffixed(sheet[group], units)
+    names = {k: ("-" if u == "rad" else u) for k, u in units.items()}   # descriptions: the names only
+    out["descriptions"] = suffixed(sheet["descriptions"], names)
+    out["warnings"] = sheet["warnings"]
+    return out

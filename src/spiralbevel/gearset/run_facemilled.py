@@ -6,19 +6,22 @@ from ..conventions import Member, Side
 from . import facemilled as fm
 from . import outputs
 from .partial import attempt, mark_failed
+from .units import synthesis_units
 
 
-def run_facemilled(spec, blank, out, steps, report, summary):
-    """Set up cutters and settings, generate the four flanks, and write the requested outputs into ``out``."""
+def run_facemilled(gs, out, steps, report, summary):
+    """Set up the cutters and settings of the gear set ``gs``, generate its four flanks, and write the requested
+    outputs into ``out``."""
+    spec, blank = gs.design, gs.blank
     o = spec.output
     n_face, n_profile = o.grid
     with steps.step("cutters and machine settings"):
-        setups, synth = fm.setup_flanks(spec, blank, with_synthesis=True)
+        setups, synth = gs.setups, gs.synthesis
         if synth:
-            report["synthesis"] = {name: r.summary() for name, r in synth.items()}
+            report["synthesis"] = {name: synthesis_units(r.summary()) for name, r in synth.items()}
         cmc = {name: d for name, d in synth.items() if hasattr(d, "multipoint")}
     with steps.step("generated flanks and curvatures"):
-        grids = {k: st.flank.grid(n_face, n_profile) for k, st in setups.items()}
+        grids = gs.grids(n_face, n_profile)
         flanks, machines = fm.flank_report(setups, blank)
         report["flanks"] = flanks
         report["machine_settings"] = machines
@@ -28,7 +31,6 @@ def run_facemilled(spec, blank, out, steps, report, summary):
             rot = fm.tooth_rotation(blank, setups, m)
             cx, cc = grids[(m, Side.CONVEX)], grids[(m, Side.CONCAVE)]
             tooth[m] = ((cx.points, cx.normals), fm.rotate_grid(cc.points, cc.normals, rot))
-            report["flanks"][m.value]["concave"]["tooth_rotation_deg"] = float(rot * 180.0 / 3.141592653589793)
     with steps.step("tooth contact analysis"):
         from .tca import run_pair_tca
 
@@ -55,16 +57,18 @@ def run_facemilled(spec, blank, out, steps, report, summary):
             # the figure to compare with the paper; the same design with the real edge radii is reported beside it
             paper = fm.cmc_paper_model(spec, blank, setups, name)
             real = te_summary(design.tca, design.multipoint) if design.tca is not None else None
+            paper = synthesis_units(paper)
+            real = synthesis_units(real) if real is not None else None
             report["tca"]["cmc"] = {"side": name, "paper_model": paper, "real_flanks": real}
             # both top-level figures from the paper's model, the one seed 001 reports (the real-flank design beside)
-            report["tca"]["control_point_errors_rad"] = paper["control_point_errors_rad"]
+            report["tca"]["control_point_errors_arcsec"] = paper["control_point_errors_arcsec"]
             if "max_transmission_error_arcsec" in paper:
                 report["tca"]["max_transmission_error_arcsec"] = paper["max_transmission_error_arcsec"]
                 summary.highlights.append(
                     f"CMC ({name}): max TE {paper['max_transmission_error_arcsec']:.4f} arcsec (paper's model; "
                     f"real edge radii {real['max_transmission_error_arcsec'] if real else float('nan'):.4f}) against "
                     f"the predesigned {paper['predesigned_magnitude_arcsec']:.4f}; control-point errors <= "
-                    f"{max(report['tca']['control_point_errors_rad']):.2e} rad")
+                    f"{max(report['tca']['control_point_errors_arcsec']):.2e} arcsec")
     ltca_result = None
     if spec.ltca is not None:
         with steps.step("loaded TCA (FE compliance, load sharing)"):
@@ -79,9 +83,9 @@ def run_facemilled(spec, blank, out, steps, report, summary):
                 summary.highlights.append(f"LTCA {spec.ltca.side}: failed ({lt['reason']})")
             else:
                 summary.highlights.append(
-                    f"LTCA {lt['side']}: torque {lt['torque_Nm']:.2f} N m (approach 0.00635 mm at "
-                    f"{lt['torque_for_approach_Nm']:.2f} N m), loaded TE "
-                    f"{lt['max_loaded_transmission_error_arcsec']:.3f} "
+                    f"LTCA {lt['side']}: torque {lt['torque_N_m']:.2f} N m (approach 0.00635 mm at "
+                    f"{lt['torque_for_approach_N_m']:.2f} N m), loaded TE "
+                    f"{lt['loaded_transmission_error_largest_magnitude_arcsec']:.3f} "
                     f"arcsec, max pressure {lt['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
             from .rating import rating_ltca_report
 
@@ -125,7 +129,7 @@ def run_facemilled(spec, blank, out, steps, report, summary):
         sec = report["tca"][name]
         summary.highlights.append(f"TCA {name}: " + (sec["error"] if "error" in sec else
                                   f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec, "
-                                  f"{len(sec['edge_contact_positions_rad'])} edge-contact positions"))
+                                  f"{len(sec['edge_contact_positions_deg'])} edge-contact positions"))
     for m in fm.MEMBERS:
         for s in fm.SIDES:
             f = flanks[m.value][s.value]

@@ -1,0 +1,144 @@
+"""Tooth contact analysis of a face-milled pair (drive and coast sides) and its report sections."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Any
+
+import numpy as np
+
+from ..conventions import Member, Side
+from ..errors import ConvergenceError, NoContactError, SpiralBevelWarning
+from ..meshing.pair import meshing_pair
+from ..meshing.tca import solve_tca
+from ..meshing.tca_result import ARCSEC
+
+#: fewest positions with a real-flank contact for which a side's TE curve (max, min, peak-to-peak) is reported
+MIN_TE_POSITIONS = 3
+
+SIDES = {"drive": (Side.CONCAVE, Side.CONVEX), "coast": (Side.CONVEX, Side.CONCAVE)}  # (pinion side, gear side)
+
+
+def run_pair_tca(blank, setups, grids, n_positions: int = 41):
+    """TCA of both sides. Returns ({side: TCAResult or None}, report section, {side: (outline1, outline2)})."""
+    results: dict[str, Any] = {}
+    section: dict[str, dict[str, Any]] = {}
+    outlines: dict[str, Any] = {}
+    for name in SIDES:
+        results[name], section[name], outline = side_tca(blank, setups, name, n_positions=n_positions, grids=grids)
+        if outline is not None:
+            outlines[name] = outline
+    return results, section, outlines
+
+
+def side_tca(blank, setups, name: str, n_positions: int = 41, misalignment=None, grids=None):
+    """TCA of one side (``"drive"`` or ``"coast"``) of a face-milled pair.
+
+    Returns (TCAResult or None, report section, (pinion outline, gear outline) in the TCA's frames or None). The
+    outlines are the flank grids (``grids``, {(member, side): FlankGeometry}) turned as the phased flanks; without
+    ``grids`` they are None. A failed solve gives (None, section with ``error``, None).
+    """
+    s1, s2 = SIDES[name]
+    pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
+    try:
+        res = solve_tca(pair.pinion, pair.gear, pair.kinematics, misalignment=misalignment, n_positions=n_positions,
+                        start=pair.start)
+    except (NoContactError, ConvergenceError) as err:
+        return None, {"pinion_side": s1.value, "gear_side": s2.value, "error": str(err)}, None
+    outline = None if grids is None else (pair.to_pair_frame(grids[(Member.PINION, s1)].points, "pinion"),
+                                          pair.to_pair_frame(grids[(Member.GEAR, s2)].points, "gear"))
+    section = tca_section(name, res)
+    if "error" in section:
+        return None, section, None
+    return res, section, outline
+
+
+def tca_section(name: str, res) -> dict:
+    """The report.json section of one side's TCA (and the ``to_dict`` of :class:`~spiralbevel.gearset.TCA`)."""
+    s1, s2 = SIDES[name]
+    te = res.te_arcsec
+    fin = np.isfinite(te)
+    edge_contacts = [{"position": i, "pinion_rotation_deg": math.degrees(res.phi1[i]), "pair": k, "member": m,
+                      "edge": e} for i, k, m, e in res.edges]
+    if fin.sum() < MIN_TE_POSITIONS:
+        msg = (f"TCA {name} side: contact of the real flanks at {int(fin.sum())} of {len(te)} positions (edge "
+               f"contact at {len(res.edges)}): too few to define a transmission-error curve, none reported")
+        warnings.warn(msg, SpiralBevelWarning, stacklevel=3)
+        return {"pinion_side": s1.value, "gear_side": s2.value, "status": "too few contact positions",
+                "positions": int(len(te)), "contact_positions": int(fin.sum()),
+                "edge_contacts": edge_contacts, "error": msg}
+    edge = np.nonzero(res.edge_contact)[0]
+    return {
+        "pinion_side": s1.value, "gear_side": s2.value,
+        "status": "ok" if not edge.size else "edge contact",
+        "positions": int(len(te)), "contact_positions": int(fin.sum()),
+        "edge_contacts": edge_contacts,
+        # extremes over the positions and the exact transfer points (the envelope's kinks between positions)
+        "max_transmission_error_arcsec": res.te_max / ARCSEC,
+        "min_transmission_error_arcsec": res.te_min / ARCSEC,
+        "peak_to_peak_arcsec": res.peak_to_peak / ARCSEC,
+        "no_contact_positions_deg": [math.degrees(x) for x in res.phi1[~fin]],
+        "transfer_points_deg": [math.degrees(x) for x in np.atleast_1d(res.transfer_phi1)],
+        "edge_contact_positions_deg": [math.degrees(res.phi1[i]) for i in edge],
+        "semi_major_axis_mean_mm": _finite_or_none(np.max(res.semi_axes[len(te) // 2])),
+        "pinion_rotation_deg": np.degrees(res.phi1[fin]), "transmission_error_arcsec": te[fin],
+    }
+
+
+def _finite_or_none(x):
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+#: misalignments of the sensitivity study: (name, Misalignment keyword, value in internal units, value shown, unit)
+SENSITIVITY = (
+    ("pinion_axial", "pinion_axial", 0.05, 0.05, "mm"),
+    ("gear_axial", "gear_axial", 0.05, 0.05, "mm"),
+    ("offset", "offset", 0.05, 0.05, "mm"),
+    ("shaft_angle", "shaft_angle", math.radians(0.05), 0.05, "deg"),
+)
+
+
+def misalignment_sensitivity(blank, setups, side: str = "drive", n_positions: int = 41):
+    """TE level and contact-path shift of one side for each misalignment of :data:`SENSITIVITY`.
+
+    The shift is that of the gear contact point at the mean position, in the pitch-generatrix coordinates of the
+    gear's blank outline (``contact_R_mm``, ``contact_h_mm`` of the aligned pair): along the face (toward the heel
+    > 0) and along the profile (toward the top > 0), mm. Returns a report section (``{"aligned": ..., name: {...}}``).
+    """
+    from ..meshing.misalignment import Misalignment
+
+    s1, s2 = SIDES[side]
+    pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
+    c1, c2, kin, start = pair.pinion, pair.gear, pair.kinematics, pair.start
+    outline = setups[(Member.GEAR, s2)].flank.outline
+
+    def study(mis):
+        res = solve_tca(c1, c2, kin, misalignment=mis, n_positions=n_positions, start=start)
+        te = res.te_arcsec
+        fin = np.isfinite(te)
+        mid = n_positions // 2
+        pt = res.point2[mid, list(res.pairs).index(0)] @ c2._R  # gear member frame, unrotated flank
+        R, h = outline.Rh(pt[2], math.hypot(pt[0], pt[1]))
+        return {"peak_to_peak_arcsec": res.peak_to_peak / ARCSEC if np.any(fin) else None,
+                "edge_contact_positions": int(np.sum(res.edge_contact)), "contact_R_mm": float(R),
+                "contact_h_mm": float(h)}
+
+    out: dict[str, Any] = {"side": side}
+    try:
+        base = study(None)
+    except (NoContactError, ConvergenceError) as err:
+        return dict(out, error=str(err))
+    out["aligned"] = base
+    for name, key, value, shown, unit in SENSITIVITY:
+        try:
+            r = study(Misalignment(**{key: value}))
+        except (NoContactError, ConvergenceError) as err:
+            out[name] = {f"value_{unit}": shown, "error": str(err)}
+            continue
+        out[name] = {f"value_{unit}": shown, "peak_to_peak_arcsec": r["peak_to_peak_arcsec"],
+                     "contact_shift_along_face_mm": r["contact_R_mm"] - base["contact_R_mm"],
+                     "contact_shift_along_profile_mm": r["contact_h_mm"] - base["contact_h_mm"],
+                     "edge_contact_positions": r["edge_contact_positions"]}
+    return out
