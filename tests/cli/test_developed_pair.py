@@ -80,7 +80,7 @@ def test_bearing_check_agrees_with_the_contact_status(report):
     S75-LH: the known pinion-edge contact at the end of the drive cycle), and then names the synthesis keys."""
     for name in ("drive", "coast"):
         t = report["tca"][name]
-        off = len(t["edge_contact_positions_rad"]) + (t["positions"] - t["contact_positions"])
+        off = len(t["edge_contact_positions_deg"]) + (t["positions"] - t["contact_positions"])
         bearing = [c for c in t["checks"] if "bearing runs off the flank" in c]
         assert len(bearing) == (1 if off else 0), (name, t["checks"])
         if off:

@@ -109,7 +109,7 @@ def test_tca_checks_flag_the_given_drive_pair(fm_run):
     _, report = fm_run
     for name in ("drive", "coast"):
         t = report["tca"][name]
-        off = len(t["edge_contact_positions_rad"]) + len(t["no_contact_positions_rad"])
+        off = len(t["edge_contact_positions_deg"]) + len(t["no_contact_positions_deg"])
         bearing = [c for c in t["checks"] if "bearing runs off the flank" in c]
         assert len(bearing) == (1 if off else 0), name
         if off:

@@ -230,6 +230,10 @@ class GearSet:
         n = positions or self.design.tca.positions
         res, section, outline = side_tca(self.blank, self.setups, _side_name(side), n_positions=n,
                                          misalignment=mis, grids=self.grids())
+        if mis is None:   # the developed-pair checks, as the main job reports them
+            from .run_facemilled import tca_side_checks
+
+            section["checks"] = tca_side_checks(res, side, self.synthesis, self.blank.z1)
         return TCA(_side_name(side), res, section, outline)
 
     def sensitivity(self, side: str = "drive", positions: int | None = None):

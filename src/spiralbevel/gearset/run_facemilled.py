@@ -145,17 +145,23 @@ class _Geo:
         self.point, self.k1, self.k2 = point, k1, k2
 
 
+def tca_side_checks(res, name, synth, z1) -> list[str]:
+    """Bearing and TE-level checks of one side (:func:`spiralbevel.meshing.tca_checks.tca_checks`): the parabolic TE
+    level of a local synthesis is checked against its design value; a CMC design against its own curve (tca.cmc)."""
+    from ..meshing.tca_checks import tca_checks
+
+    local = name in synth and not hasattr(synth[name], "multipoint")
+    design = synthesis_units(synth[name].summary()).get("te_magnitude_arcsec") if local else None
+    return tca_checks(res, name, name in synth, design, z1)
+
+
 def _tca_checks(report, name, res, synth, z1):
     """Bearing and TE-level checks of one side into ``tca.<side>.checks`` (and as design warnings)."""
     import warnings
 
     from ..errors import DesignWarning
-    from ..meshing.tca_checks import tca_checks
 
-    # the parabolic TE level of a local synthesis; a CMC design is checked against its own curve (tca.cmc)
-    local = name in synth and not hasattr(synth[name], "multipoint")
-    design = report.get("synthesis", {}).get(name, {}).get("te_magnitude_arcsec") if local else None
-    found = tca_checks(res, name, name in synth, design, z1)
+    found = tca_side_checks(res, name, synth, z1)
     report["tca"][name]["checks"] = found
     for text in found:
         warnings.warn(text, DesignWarning, stacklevel=2)
