@@ -5,10 +5,11 @@ source (``__pycache__``) or, where that is read-only (a system-wide install), in
 (``NUMBA_CACHE_DIR`` when set). Where no cache location is writable at all, the kernel is compiled in memory on first
 use instead of failing: the result is the same, only the first call of each process pays the compile time.
 
-Why numba (docs/performance.md): the contact kernels are loops over small independent systems (5 x 5 Newton
+Why numba: the contact kernels are loops over small independent systems (5 x 5 Newton
 systems, surface jets at single points) where numpy spends most of its time in call overhead; numba compiles the
 plain loops to machine code with the same IEEE arithmetic, ships wheels for every platform the project supports, and
-is imported only by the modules that hold compiled kernels (not by the CLI's start-up path).
+is imported only by the modules that hold compiled kernels (not by the CLI's start-up path). Costs and
+figures: README, "Performance".
 """
 
 from __future__ import annotations
