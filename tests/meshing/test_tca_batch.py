@@ -233,3 +233,21 @@ def test_cache_fallback_compiles_in_memory(monkeypatch):
         return 2.0 * a
 
     assert f(1.5) == 3.0 and calls == [True, False]
+
+
+def test_unknown_jet_kind_gives_nan_and_no_convergence(pair):
+    # a surface claiming an unregistered jet: NaN data, every system reported as not converged (never a silent root)
+    from spiralbevel._core import jets
+
+    out = np.zeros((3, 6))
+    jets.surface_jet(99, np.zeros(5), 0.1, 0.2, out)
+    assert np.isnan(out).all()
+
+    class _Bogus(_NoJet):
+        jet = (99, np.zeros(5))
+
+    kin = BevelPairKinematics(pair.shaft_angle, pair.z1, pair.z2)
+    prob = ContactProblem(_Bogus(pair.pinion), _Bogus(pair.gear), kin)
+    x0 = _random_x(pair, np.random.default_rng(0), 4)
+    x, conv, res, *_ = prob.newton(np.zeros(4), x0)
+    assert not conv.any() and np.all(res == np.inf)
