@@ -2,7 +2,8 @@
 per-position scipy.optimize.fsolve of the same contact equations, measured in the same run, on one core.
 
 Run:  python bench/bench_tca.py [--quick]
-Targets: under 50 ms (met); 1 ms for the face-milled pair needs the compiled contact Newton (issue 13, pending).
+Targets: under 50 ms (met); 1 ms for the face-milled pair (not met: the Newton iterations are compiled, the edge-contact
+stage and the generated-flank jet are still numpy).
 
 Cases: the crowned log-spiral pair (point contact), the exactly conjugate log-spiral pair (line contact) and the
 seed 001 face-milled pair with the locally synthesized pinion (drive side, as the job runs it: ``phased_for_pair``).
@@ -16,7 +17,8 @@ position. A pair's march stops at the first position where fsolve does not conve
 the failed call is timed). Then the pair with the largest TE at each position and its contact ellipse
 (``contact_ellipse_from_surfaces``): 41 ellipses, as in the vectorized TCA. Both must find the same solutions: the
 script prints the largest difference and stops if it exceeds 1e-9. Both sides are timed the same way: the median of
-N runs of the whole computation (bench/_timing.py).
+N runs of the whole computation (bench/_timing.py), in CPU time of this process (both are single-threaded; the
+machine is shared, its load is printed). The compiled kernels are warmed up (cached) before timing.
 """
 
 from __future__ import annotations
@@ -121,13 +123,13 @@ def facemilled_case():
 
 def run_case(name, pinion, gear, kin, kw, reps_vec, reps_base, line=False):
     solve_tca(pinion, gear, kin, **kw)  # warm-up
-    t_vec, res = median_time(lambda: solve_tca(pinion, gear, kin, **kw), reps_vec)
+    t_vec, res = median_time(lambda: solve_tca(pinion, gear, kin, **kw), reps_vec, cpu=True)
     prob = ContactProblem(pinion, gear, kin)
     j0 = list(res.pairs).index(0)
     mid = len(res.phi1) // 2
     xm = np.r_[res.params1[mid, j0], res.params2[mid, j0], res.phi2_pairs[mid, j0]]
     t_base, (xb, st) = median_time(lambda: baseline(prob, xm, res.phi1, res.pairs, res.phi1_mean, res.approach),
-                                 reps_base)
+                                 reps_base, cpu=True)
     # same solutions: gear angle (TE) everywhere both converged; the contact point too for point contact. The
     # baseline solves the surface contact only: pairs whose surface contact leaves a flank are edge contacts in the
     # vectorized TCA (solved there, in its time) and are not compared
@@ -145,7 +147,7 @@ def run_case(name, pinion, gear, kin, kw, reps_vec, reps_base, line=False):
           f"{res.iterations} final Newton iterations; {n_edge} edge contacts solved)")
     print(f"  fsolve baseline: {t_base * 1e3:8.2f} ms  ({st['calls']} fsolve calls, {st['failed']} not converged "
           f"({st['t_failed'] * 1e3:.1f} ms), 41 ellipses)")
-    print(f"  ratio          : {t_base / t_vec:8.1f} x  (median of {reps_vec} / {reps_base} runs)", end="")
+    print(f"  ratio          : {t_base / t_vec:8.1f} x  (median of {reps_vec} / {reps_base} runs, CPU time)", end="")
     if st["failed"]:
         print(f"   (without the failed fsolve calls: {(t_base - st['t_failed']) / t_vec:.1f} x)", end="")
     print()
@@ -159,6 +161,7 @@ def run_case(name, pinion, gear, kin, kw, reps_vec, reps_base, line=False):
 
 def main():
     quick = "--quick" in sys.argv
+    print(f"machine load {os.getloadavg()[0]:.1f} at start")
     pair = conjugate_logspiral_pair()
     kin = BevelPairKinematics(pair.shaft_angle, pair.z1, pair.z2)
     crowned = NormalDeviation(pair.pinion, quadratic_crowning(pair.pinion.reference_params, (0.5, 0.0, 5.0)))

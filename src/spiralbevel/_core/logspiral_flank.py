@@ -16,17 +16,19 @@ Closed forms used (docs/theory/logspiral.md, Eqs. (S3)-(S9), converted with s = 
     k1 = L/E = cos(psi-beta) / (rho |sin psi|),     k2 = N/G = s sin(beta) / rho
 
 The kernel trusts its input: psi must be nonzero (checked by the caller). It uses five transcendental calls per
-point (cos/sin of varphi and psi, one exp) and works in cache-sized chunks to limit memory traffic.
+point (cos/sin of varphi and psi, one exp) in one compiled pass over the points (no temporaries).
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+
+from .jit import kernel
 
 FIELDS_VEC = ("point", "normal", "e1", "e2")
 FIELDS_SCALAR = ("E", "F", "G", "L", "M", "N", "k1", "k2", "psi", "rho")
-
-_CHUNK = 8192
 
 
 def allocate(n):
@@ -64,82 +66,47 @@ def flank_flat(varphi, phi, rho0, delta, beta, out=None):
     growth = sd * cb / sb
     out["F"][:] = 0.0
     out["M"][:] = 0.0
-    for lo in range(0, n, _CHUNK):
-        hi = min(lo + _CHUNK, n)
-        _chunk(varphi[lo:hi], phi[lo:hi], rho0, sd, cd, sb, cb, growth, {k: v[lo:hi] for k, v in out.items()})
+    _flank_loop(varphi, phi, float(rho0), sd, cd, sb, cb, growth, out["point"], out["normal"], out["e1"], out["e2"],
+                out["E"], out["G"], out["L"], out["N"], out["k1"], out["k2"], out["psi"], out["rho"])
     return out
 
 
-def _chunk(vp, ph, rho0, sd, cd, sb, cb, growth, o):
-    psi = o["psi"]
-    np.subtract(vp, ph, out=psi)
-    psi *= sd
-    rho = o["rho"]
-    np.multiply(ph, growth, out=rho)
-    np.exp(rho, out=rho)
-    rho *= rho0
-    cf, sf = np.cos(vp), np.sin(vp)
-    cp, sp = np.cos(psi), np.sin(psi)
-    s = np.sign(psi)
-    # cos(psi - beta), sin(psi - beta) by the addition theorems (no extra transcendental calls)
-    cpb = cp * cb
-    tmp = sp * sb
-    cpb += tmp
-    spb = sp * cb
-    np.multiply(cp, sb, out=tmp)
-    spb -= tmp
-    # point = rho (cos psi t + sin psi w), t = (sd cf, sd sf, cd), w = (sf, -cf, 0)
-    a = rho * cp
-    b = rho * sp
-    p = o["point"]
-    np.multiply(a, cd, out=p[:, 2])
-    a *= sd
-    np.multiply(a, cf, out=tmp)
-    np.multiply(b, sf, out=p[:, 0])
-    p[:, 0] += tmp
-    np.multiply(a, sf, out=tmp)
-    np.multiply(b, cf, out=p[:, 1])
-    np.subtract(tmp, p[:, 1], out=p[:, 1])
-    # e2 = cpb t + spb w
-    e2 = o["e2"]
-    np.multiply(cpb, cd, out=e2[:, 2])
-    np.multiply(cpb, sd, out=a)  # a := cpb sd
-    np.multiply(a, cf, out=tmp)
-    np.multiply(spb, sf, out=e2[:, 0])
-    e2[:, 0] += tmp
-    np.multiply(a, sf, out=tmp)
-    np.multiply(spb, cf, out=e2[:, 1])
-    np.subtract(tmp, e2[:, 1], out=e2[:, 1])
-    # e1 = s m, m = (cd cf, cd sf, -sd)
-    e1 = o["e1"]
-    np.multiply(s, -sd, out=e1[:, 2])
-    np.multiply(s, cd, out=a)  # a := s cd
-    np.multiply(a, cf, out=e1[:, 0])
-    np.multiply(a, sf, out=e1[:, 1])
-    # n_out = s (cpb w - spb t) = e1 x e2
-    nrm = o["normal"]
-    np.multiply(s, cpb, out=a)  # a := s cpb
-    np.multiply(s, spb, out=b)  # b := s spb
-    np.multiply(b, -cd, out=nrm[:, 2])
-    b *= sd
-    np.multiply(a, sf, out=nrm[:, 0])
-    np.multiply(b, cf, out=tmp)
-    nrm[:, 0] -= tmp
-    np.multiply(a, cf, out=nrm[:, 1])
-    np.multiply(b, sf, out=tmp)
-    nrm[:, 1] += tmp
-    np.negative(nrm[:, 1], out=nrm[:, 1])
-    # fundamental forms (convex-positive II) and curvatures
-    asp = np.abs(sp, out=sp)  # |sin psi|
-    np.multiply(rho, asp, out=a)  # a := rho |sin psi|
-    np.multiply(a, cd, out=b)
-    np.multiply(b, b, out=o["E"])
-    np.multiply(a, cpb, out=b)
-    np.multiply(b, cd * cd, out=o["L"])
-    np.divide(cpb, a, out=o["k1"])
-    np.multiply(rho, sd / sb, out=b)
-    np.multiply(b, b, out=o["G"])
-    np.multiply(s, sb, out=a)
-    np.divide(a, rho, out=o["k2"])
-    np.multiply(b, sd, out=b)
-    np.multiply(b, s, out=o["N"])
+@kernel
+def _flank_loop(vp, ph, rho0, sd, cd, sb, cb, growth, p, nrm, e1, e2, E, G, L, N, k1, k2, psi_o, rho_o):
+    """One pass over the points (compiled): the closed forms of the module docstring."""
+    for i in range(vp.shape[0]):
+        psi = (vp[i] - ph[i]) * sd
+        rho = rho0 * math.exp(ph[i] * growth)
+        psi_o[i], rho_o[i] = psi, rho
+        cf, sf = math.cos(vp[i]), math.sin(vp[i])
+        cp, sp = math.cos(psi), math.sin(psi)
+        s = 1.0 if psi > 0 else (-1.0 if psi < 0 else 0.0)
+        # cos(psi - beta), sin(psi - beta) by the addition theorems (no extra transcendental calls)
+        cpb = cp * cb + sp * sb
+        spb = sp * cb - cp * sb
+        # point = rho (cos psi t + sin psi w), t = (sd cf, sd sf, cd), w = (sf, -cf, 0)
+        a, b = rho * cp, rho * sp
+        p[i, 0] = b * sf + a * sd * cf
+        p[i, 1] = a * sd * sf - b * cf
+        p[i, 2] = a * cd
+        # e2 = cpb t + spb w
+        e2[i, 0] = spb * sf + cpb * sd * cf
+        e2[i, 1] = cpb * sd * sf - spb * cf
+        e2[i, 2] = cpb * cd
+        # e1 = s m, m = (cd cf, cd sf, -sd)
+        e1[i, 0] = s * cd * cf
+        e1[i, 1] = s * cd * sf
+        e1[i, 2] = -s * sd
+        # n_out = s (cpb w - spb t) = e1 x e2
+        nrm[i, 0] = s * cpb * sf - s * spb * sd * cf
+        nrm[i, 1] = -(s * cpb * cf + s * spb * sd * sf)
+        nrm[i, 2] = -s * spb * cd
+        # fundamental forms (convex-positive II) and curvatures
+        ra = rho * abs(sp)
+        E[i] = (ra * cd) ** 2
+        L[i] = ra * cpb * (cd * cd)
+        k1[i] = cpb / ra
+        g = rho * (sd / sb)
+        G[i] = g * g
+        k2[i] = s * sb / rho
+        N[i] = g * sd * s

@@ -16,11 +16,25 @@ import numpy as np
 
 from .._core import tca as _k
 from .._core import tca_batch as _b
+from .._core import tca_newton as _n
 from ..errors import DesignError, Problem
 from .contact_surface import surface_derivatives
 from .misalignment import Misalignment
 
 __all__ = ["ContactProblem"]
+
+#: rank threshold of the minimum-norm step and trial halvings of the Newton (:mod:`spiralbevel._core.tca_newton`)
+_RCOND = 1e-10
+_HALVINGS = 8
+
+
+def _jet(surface):
+    """``(kind, prm)`` of a surface's compiled jet (:mod:`spiralbevel._core.jets`), or None."""
+    jet = getattr(surface, "jet", None)
+    if jet is None:
+        return None
+    kind, prm = jet
+    return int(kind), np.ascontiguousarray(prm, float)
 
 
 class ContactProblem:
@@ -68,7 +82,10 @@ class ContactProblem:
             ref = getattr(pinion, "reference_params", None)
             scale = float(np.linalg.norm(pinion.evaluate(np.asarray(ref, float))[0])) if ref is not None else 100.0
         self.scale = float(scale)
-        self._const = _b.assembly_constants(self.axes, self.scale)
+        d, M2, L = _b.assembly_constants(self.axes, self.scale)
+        self._const = (np.ascontiguousarray(d), np.ascontiguousarray(M2), L)
+        jets = (_jet(pinion), _jet(gear))
+        self._jets = jets if jets[0] is not None and jets[1] is not None else None
 
     # ------------------------------------------------------------------ angles of tooth pairs
     @property
@@ -125,6 +142,12 @@ class ContactProblem:
             return _k.minnorm_step(J, Fp)[0]
 
     # ------------------------------------------------------------------ batched solve
+    def _stacked(self, x):
+        """Member-frame surface data ``(S1, S2)`` (m, 3, 6) of pinion and gear at x (m, 5), by numpy."""
+        S1 = _b.stack_state(*surface_derivatives(self.pinion, x[:, 0:2]))
+        S2 = _b.stack_state(*surface_derivatives(self.gear, x[:, 2:4]))
+        return np.ascontiguousarray(S1, float), np.ascontiguousarray(S2, float)
+
     def newton(self, phi1_eff, x0, tol=1e-10, max_iter=30, basis=None, anchor=None, patience=None):
         """Batched Newton on flat batches, keeping the Jacobian and the surface data of the final iterate.
 
@@ -140,46 +163,72 @@ class ContactProblem:
             See :meth:`solve`.
         patience : int, optional
             Iterations without halving the best residual after which a system is given up
-            (:func:`spiralbevel._core.tca_batch.newton_batched`); default: never (up to ``max_iter``).
+            (:mod:`spiralbevel._core.tca_newton`); default: never (up to ``max_iter``).
 
         Returns
         -------
         x (m, 5), converged (m,), residual (m,) mm, J (m, 5 or 6, 5), data, iterations int, basis (m, 2, 3)
             ``data = (S1, S2, S1f, Q)``: stacked member-frame surface data of pinion and gear (m, 3, 6) (columns r, n,
-            r_q0, r_q1, n_q0, n_q1) and their fixed-frame images (:func:`~spiralbevel._core.tca_batch.system_stacked`).
+            r_q0, r_q1, n_q0, n_q1) and their fixed-frame images (:func:`~spiralbevel._core.tca_newton.assemble`).
+
+        Notes
+        -----
+        The iteration is compiled (:mod:`spiralbevel._core.tca_newton`). When both flanks expose a compiled jet
+        (``jet = (kind, prm)``, :mod:`spiralbevel._core.jets`) it runs entirely in compiled code; otherwise numpy
+        evaluates the flanks between the compiled steps (same rules, same arithmetic of the system and the step).
         """
-        phi1_eff = np.asarray(phi1_eff, float).reshape(-1)
-        x0 = np.asarray(x0, float).reshape(-1, 5)
-        c1, s1 = np.cos(phi1_eff)[:, None], np.sin(phi1_eff)[:, None]
-        E = None if basis is None else np.asarray(basis, float)
-        const = self._const
-
-        def fun(x, idx):
-            nonlocal E
-            S1 = _b.stack_state(*surface_derivatives(self.pinion, x[:, 0:2]))
-            S2 = _b.stack_state(*surface_derivatives(self.gear, x[:, 2:4]))
-            c2, s2 = np.cos(x[:, 4])[:, None], np.sin(x[:, 4])[:, None]
-            if E is None:  # first call, all systems: basis from the gear normal at the start
-                n2f = const[1][:3] @ _b.rotate_z(S2[:, :, 1:2], c2, s2)
-                E = _b.basis_matrix(n2f[:, :, 0])
-            F, J, S1f, Q = _b.system_stacked(S1, S2, c1[idx], s1[idx], c2, s2, const, E[idx])
-            if anchor is not None:
-                j, val = anchor
-                F = np.concatenate([F, self.scale * (x[:, j] - np.asarray(val, float)[idx])[:, None]], -1)
-                row = np.zeros((len(idx), 1, 5))
-                row[:, 0, j] = self.scale
-                J = np.concatenate([J, row], -2)
-            return F, J, (S1, S2, S1f, Q)
-
-        x, conv, res, J, data, it = _b.newton_batched(fun, x0, tol, max_iter=max_iter,
-                                                      patience=max_iter if patience is None else patience)
-        return x, conv, res, J, data, it, E
+        phi1_eff = np.ascontiguousarray(np.asarray(phi1_eff, float).reshape(-1))
+        x0 = np.ascontiguousarray(np.asarray(x0, float).reshape(-1, 5))
+        m = x0.shape[0]
+        c1, s1 = np.cos(phi1_eff), np.sin(phi1_eff)
+        have_E = basis is not None
+        E = np.array(basis, float, order="C") if have_E else np.empty((m, 2, 3))
+        if anchor is None:
+            aj, aval = -1, np.zeros(m)
+        else:
+            aj, aval = int(anchor[0]), np.ascontiguousarray(np.broadcast_to(np.asarray(anchor[1], float), (m,)))
+        d, M2, L = self._const
+        patience = max_iter if patience is None else int(patience)
+        if self._jets is not None:
+            (k1, p1), (k2, p2) = self._jets
+            x, _, J, res, S1, S2, S1f, Q, it = _n.newton_jets(k1, p1, k2, p2, c1, s1, x0, E, have_E, d, M2, L, aj,
+                                                              aval, tol, max_iter, _RCOND, patience, _HALVINGS)
+            return x, res < tol, res, J, (S1, S2, S1f, Q), it, E
+        k = 6 if aj >= 0 else 5
+        x = x0.copy()
+        with np.errstate(all="ignore"):
+            S1, S2 = self._stacked(x)
+        if not have_E:
+            _n.basis_batch(S2, x, M2, E)
+        F, J, S1f, Q = np.empty((m, k)), np.empty((m, k, 5)), np.empty((m, 3, 6)), np.empty((m, 6, 6))
+        _n.assemble_batch(S1, S2, c1, s1, x, d, M2, L, E, aj, aval, F, J, S1f, Q)
+        res, best = np.empty(m), np.empty(m)
+        stall, halved = np.zeros(m, np.int64), np.zeros(m, np.int64)
+        active, acc = np.zeros(m, bool), np.zeros(m, bool)
+        dx, xn, idx = np.zeros((m, 5)), np.empty((m, 5)), np.empty(m, np.int64)
+        n_active = _n.start(F, J, tol, res, best, stall, halved, active)
+        it = 0
+        while it < max_iter and n_active > 0:
+            it += 1
+            c = _n.propose(x, F, J, dx, halved, active, _RCOND, xn, idx)
+            ii, xt = idx[:c], xn[:c]
+            with np.errstate(all="ignore"):  # wild iterates give inf/NaN, handled by the halving rule
+                T1, T2 = self._stacked(xt)
+            Fn, Jn, T1f, TQ = np.empty((c, k)), np.empty((c, k, 5)), np.empty((c, 3, 6)), np.empty((c, 6, 6))
+            _n.assemble_batch(T1, T2, c1[ii], s1[ii], xt, d, M2, L, np.ascontiguousarray(E[ii]), aj,
+                              np.ascontiguousarray(aval[ii]), Fn, Jn, T1f, TQ)
+            n_active = _n.accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience,
+                                 _HALVINGS, acc)
+            a = acc[:c]
+            ia = ii[a]
+            S1[ia], S2[ia], S1f[ia], Q[ia] = T1[a], T2[a], T1f[a], TQ[a]
+        return x, res < tol, res, J, (S1, S2, S1f, Q), it, E
 
     def path_tangent(self, J, S1f, basis):
         """dx/dphi1 (m, 5) from the Jacobian and fixed-frame pinion data of :meth:`newton` (minimum norm on a
         contact line)."""
-        with np.errstate(all="ignore"):
-            return _b.newton_step(J, _b.dF_dphi1_stacked(S1f, basis, self.scale))
+        return _n.tangent_batch(np.ascontiguousarray(J, float), np.ascontiguousarray(S1f, float),
+                                np.ascontiguousarray(basis, float), self.scale, _RCOND)
 
     def solve(self, phi1_eff, x0, tol=1e-10, max_iter=30, basis=None, anchor=None):
         """Batched Newton (minimum-norm steps) on flat batches.

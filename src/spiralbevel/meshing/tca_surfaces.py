@@ -13,7 +13,9 @@ from typing import Any
 
 import numpy as np
 
+from .._core import jets as _jets
 from .._core import logspiral as _ls
+from .._core import logspiral_jet as _lsj
 from .._core.rotations import rot_z, rot_y
 from ..design.logspiral_pair import pair_recipe
 from ..errors import DesignError, GeometryError
@@ -55,7 +57,7 @@ class LogSpiralSurface:
     psi_range: tuple | None = None
     phi_range: tuple | None = None
     reference_params: tuple | None = None
-    _R: np.ndarray = field(init=False, repr=False, compare=False)
+    _prm: np.ndarray = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
         if not (self.rho0 > 0 and 0 < self.delta < np.pi / 2 and 0 < abs(self.beta) < np.pi / 2):
@@ -65,61 +67,24 @@ class LogSpiralSurface:
             raise GeometryError.single("psi_range", self.psi_range, "an interval not containing 0", "rad",
                                        "psi = 0 is the singular (cuspidal) edge, "
                                        "docs/theory/logspiral.md#singular-edge")
-        object.__setattr__(self, "_R", rot_z(self.azimuth))
+        object.__setattr__(self, "_prm", _lsj.parameters(self.rho0, self.delta, self.beta, self.azimuth))
 
     def _kernel(self, params, deriv):
-        """Lean evaluation of seed 000 Eq. (16) and docs/theory/logspiral.md, Eqs. (S3)-(S8): r, n_out and optionally
-        dr, dn."""
+        """Compiled jet (:mod:`spiralbevel._core.logspiral_jet`) at ``params (..., 2)``: r, n_out and optionally
+        dr, dn (..., 3, 2). Wild solver iterates give inf/NaN, never warnings."""
         p = np.asarray(params, float)
-        vphi, phi = p[..., 0], p[..., 1]
-        d, b = self.delta, self.beta
-        sd, cd = np.sin(d), np.cos(d)
-        with np.errstate(all="ignore"):  # wild solver iterates give inf/NaN, never warnings
-            c, s = np.cos(vphi), np.sin(vphi)
-            psi = (vphi - phi) * sd
-            rho = self.rho0 * np.exp(phi * (sd / np.tan(b)))
-            cp, sp = np.cos(psi), np.sin(psi)
-            cpb, spb = np.cos(psi - b), np.sin(psi - b)
-            sg = np.where(psi >= 0, 1.0, -1.0)
-            # t = (sd c, sd s, cd), w = (s, -c, 0), m = (cd c, cd s, -sd)
-            shape = p.shape[:-1] + (3,)
-            r = np.empty(shape)
-            a1, a2 = rho * cp, rho * sp
-            r[..., 0] = a1 * sd * c + a2 * s
-            r[..., 1] = a1 * sd * s - a2 * c
-            r[..., 2] = a1 * cd
-            n = np.empty(shape)  # n_out = sg (cpb w - spb t)
-            n[..., 0] = sg * (cpb * s - spb * sd * c)
-            n[..., 1] = sg * (-cpb * c - spb * sd * s)
-            n[..., 2] = sg * (-spb * cd)
-            if deriv:
-                dr = np.empty(shape + (2,))
-                dn = np.empty(shape + (2,))
-                f = rho * sp * cd  # r_varphi = f m
-                dr[..., 0, 0] = f * cd * c
-                dr[..., 1, 0] = f * cd * s
-                dr[..., 2, 0] = -f * sd
-                e2x = cpb * sd * c + spb * s  # e2 = cpb t + spb w
-                e2y = cpb * sd * s - spb * c
-                e2z = cpb * cd
-                g = rho * sd / np.sin(b)  # r_phi = g e2
-                dr[..., 0, 1] = g * e2x
-                dr[..., 1, 1] = g * e2y
-                dr[..., 2, 1] = g * e2z
-                h = sg * cd * cpb  # n_varphi = cd cpb m
-                dn[..., 0, 0] = h * cd * c
-                dn[..., 1, 0] = h * cd * s
-                dn[..., 2, 0] = -h * sd
-                k = sg * sd  # n_phi = sd e2
-                dn[..., 0, 1] = k * e2x
-                dn[..., 1, 1] = k * e2y
-                dn[..., 2, 1] = k * e2z
-        if self.azimuth != 0.0:
-            R = self._R
-            r, n = r @ R.T, n @ R.T
-            if deriv:
-                dr, dn = R @ dr, R @ dn
-        return (r, n, dr, dn) if deriv else (r, n)
+        q = np.ascontiguousarray(p.reshape(-1, 2))
+        out = np.empty((q.shape[0], 3, 6))
+        _lsj.jet_batch(self._prm, q, out)
+        out = out.reshape(p.shape[:-1] + (3, 6))
+        if deriv:
+            return out[..., 0], out[..., 1], out[..., 2:4], out[..., 4:6]
+        return out[..., 0], out[..., 1]
+
+    @property
+    def jet(self):
+        """``(kind, prm)`` of the compiled jet (:mod:`spiralbevel._core.jets`) that compiled TCA evaluates."""
+        return _jets.LOGSPIRAL, self._prm
 
     def evaluate(self, params):
         """Points (..., 3) mm and outward normals (..., 3) at ``params = (varphi, phi)``."""

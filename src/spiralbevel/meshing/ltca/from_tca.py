@@ -107,13 +107,20 @@ def segment_compliance(convex, concave, z: int, side: str, *, material: Material
 
 
 # ---------------------------------------------------------------------------------------------------- positions
-def _contains(surface, params):
-    """The surface's ``contains`` (True where it has none); NaN parameters are outside."""
+def _contains(surface, params, tol=1e-9):
+    """The surface's ``contains`` (True where it has none); NaN parameters are outside. With ``boundary_margins``, a
+    point within ``tol`` (the margins' units, mm or rad) of an edge is on the flank: the foot of the grid point at an
+    edge contact lies on the edge up to the rounding of the contact solve (about 1e-13)."""
     from ..contact_surface import surface_contains
 
     params = np.asarray(params, float)
     fin = np.all(np.isfinite(params), axis=-1)
-    return fin & surface_contains(surface, np.where(fin[..., None], params, 0.0))
+    p = np.where(fin[..., None], params, 0.0)
+    if hasattr(surface, "boundary_margins"):
+        with np.errstate(invalid="ignore"):
+            g = np.asarray(surface.boundary_margins(p), float)
+        return fin & np.all(g >= -tol, axis=-1)
+    return fin & surface_contains(surface, p)
 
 
 def _on_edge(surface, params, tol=1e-8):

@@ -1,0 +1,447 @@
+"""Compiled batched Newton of tooth contact analysis: system assembly, the 5 x 5 step, the give-up rule.
+
+Same equations and unknowns as :mod:`spiralbevel._core.tca` (seed 001 Eq. (16), docs/theory/tca.md, Eq. (T5)):
+x = (q1, q2, phi2), F in mm, surface data stacked per system as ``S (3, 6)`` with the columns (r, n, r_q0, r_q1,
+n_q0, n_q1) in the member frame (:func:`spiralbevel._core.tca_batch.stack_state`). Every function here is compiled
+(:mod:`spiralbevel._core.jit`) and is the only implementation of its rule:
+
+* :func:`assemble` -- F (k,) and J (k, 5) of one system (k = 6 with an anchor equation x_j = value);
+* :func:`step` -- the Newton step dx = -J^+ F: column equilibration; LU with partial pivoting where
+  |det| > 5^2.5 rcond proves s_min / s_max > rcond (then the pseudo-inverse is the inverse), else the minimum-norm
+  SVD step (line contact, anchored systems; one-sided Jacobi SVD, which compiles in a fraction of the time of
+  numba's LAPACK binding); NaN for a non-finite system;
+* :func:`start`, :func:`propose`, :func:`accept` -- the batched iteration as reverse communication: ``propose``
+  gives the trial points of the active systems, the caller evaluates the surfaces there and assembles, ``accept``
+  applies the rules: a trial that leaves the surfaces (non-finite F or J) is retried with the step halved, up to
+  ``halvings`` times; a system whose residual has not halved its best value for ``patience`` consecutive iterations
+  is given up (Newton cycling or wandering: no solution near the start); converged when max|F| < tol.
+* :func:`newton_jets` -- the whole iteration in compiled code for surfaces with compiled jets
+  (:mod:`spiralbevel._core.jets`). Surfaces without one run the same ``propose``/``accept`` from Python
+  (:meth:`spiralbevel.meshing.contact_problem.ContactProblem.newton`), with numpy evaluating the surfaces.
+
+Systems are independent: the batched iteration equals a per-system one, and ``iterations`` is the largest number of
+iterations any system took.
+
+Constants of an assembly (:func:`spiralbevel._core.tca_batch.assembly_constants`): d = o1 - o2 (3,) mm,
+M2 = [B2; [a2]x B2] (6, 3), L mm the length scale of the normal equations.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .jets import surface_jet
+from .jit import kernel
+
+__all__ = [
+    "assemble",
+    "assemble_batch",
+    "basis_rows",
+    "basis_batch",
+    "step",
+    "step_batch",
+    "tangent_batch",
+    "start",
+    "propose",
+    "accept",
+    "newton_jets",
+]
+
+#: |det| of a matrix with unit columns bounds its singular values: s_min / s_max >= |det| / s_max^5 and
+#: s_max <= sqrt(5) (Frobenius), so |det| > 5^2.5 * rcond guarantees s_min / s_max > rcond.
+_DET_BOUND = 5.0 ** 2.5
+
+
+@kernel
+def basis_rows(S2, c2, s2, M2, E):
+    """Rows e_1, e_2 of ``E (2, 3)``: unit vectors orthogonal to the gear's fixed-frame normal and to each other."""
+    nx = c2 * S2[0, 1] - s2 * S2[1, 1]
+    ny = s2 * S2[0, 1] + c2 * S2[1, 1]
+    nz = S2[2, 1]
+    n0 = M2[0, 0] * nx + M2[0, 1] * ny + M2[0, 2] * nz
+    n1 = M2[1, 0] * nx + M2[1, 1] * ny + M2[1, 2] * nz
+    n2 = M2[2, 0] * nx + M2[2, 1] * ny + M2[2, 2] * nz
+    # helper e_x where |n_x| < 0.6, else e_y (spiralbevel._core.tca.tangent_basis)
+    if abs(n0) < 0.6:
+        a0, a1, a2 = 0.0, n2, -n1
+    else:
+        a0, a1, a2 = -n2, 0.0, n0
+    nrm = math.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
+    a0, a1, a2 = a0 / nrm, a1 / nrm, a2 / nrm
+    E[0, 0], E[0, 1], E[0, 2] = a0, a1, a2
+    E[1, 0] = n1 * a2 - n2 * a1
+    E[1, 1] = n2 * a0 - n0 * a2
+    E[1, 2] = n0 * a1 - n1 * a0
+
+
+@kernel
+def basis_batch(S2, x, M2, E):
+    """:func:`basis_rows` for every row of ``S2 (m, 3, 6)`` at the gear angles ``x[:, 4]`` into ``E (m, 2, 3)``."""
+    for i in range(x.shape[0]):
+        basis_rows(S2[i], math.cos(x[i, 4]), math.sin(x[i, 4]), M2, E[i])
+
+
+@kernel
+def assemble(S1, S2, c1, s1, x, d, M2, L, E, aj, aval, F, J, S1f, Q):
+    """Contact system of one system: F (k,) mm, J (k, 5), fixed-frame data S1f (3, 6) and Q (6, 6).
+
+    F[0:3] = o1 + R1 r1 - o2 - R2 r2, F[3:5] = L E (R1 n1 + R2 n2); dF/dq1 = (R1 r1_q, L E R1 n1_q),
+    dF/dq2 = (-R2 r2_q, L E R2 n2_q), dF/dphi2 = (-a2 x R2 r2, L E (a2 x R2 n2)), with R1 = R_z(phi1) and
+    R2 = B2 R_z(phi2) (Q rows 0-2: R2 S2; rows 3-5: a2 x R2 S2). With ``aj >= 0``, the row F[5] = L (x_aj - aval).
+    """
+    c2, s2 = math.cos(x[4]), math.sin(x[4])
+    for j in range(6):
+        S1f[0, j] = c1 * S1[0, j] - s1 * S1[1, j]
+        S1f[1, j] = s1 * S1[0, j] + c1 * S1[1, j]
+        S1f[2, j] = S1[2, j]
+        u = c2 * S2[0, j] - s2 * S2[1, j]
+        v = s2 * S2[0, j] + c2 * S2[1, j]
+        w = S2[2, j]
+        for i in range(6):
+            Q[i, j] = M2[i, 0] * u + M2[i, 1] * v + M2[i, 2] * w
+    for i in range(3):
+        F[i] = d[i] + S1f[i, 0] - Q[i, 0]
+        J[i, 0] = S1f[i, 2]
+        J[i, 1] = S1f[i, 3]
+        J[i, 2] = -Q[i, 2]
+        J[i, 3] = -Q[i, 3]
+        J[i, 4] = -Q[3 + i, 0]
+    for a in range(2):
+        e0, e1, e2 = E[a, 0], E[a, 1], E[a, 2]
+        F[3 + a] = L * (e0 * (S1f[0, 1] + Q[0, 1]) + e1 * (S1f[1, 1] + Q[1, 1]) + e2 * (S1f[2, 1] + Q[2, 1]))
+        J[3 + a, 0] = L * (e0 * S1f[0, 4] + e1 * S1f[1, 4] + e2 * S1f[2, 4])
+        J[3 + a, 1] = L * (e0 * S1f[0, 5] + e1 * S1f[1, 5] + e2 * S1f[2, 5])
+        J[3 + a, 2] = L * (e0 * Q[0, 4] + e1 * Q[1, 4] + e2 * Q[2, 4])
+        J[3 + a, 3] = L * (e0 * Q[0, 5] + e1 * Q[1, 5] + e2 * Q[2, 5])
+        J[3 + a, 4] = L * (e0 * Q[3, 1] + e1 * Q[4, 1] + e2 * Q[5, 1])
+    if aj >= 0:
+        F[5] = L * (x[aj] - aval)
+        for j in range(5):
+            J[5, j] = 0.0
+        J[5, aj] = L
+
+
+@kernel
+def assemble_batch(S1, S2, c1, s1, x, d, M2, L, E, aj, aval, F, J, S1f, Q):
+    """:func:`assemble` for every row: ``S1, S2 (m, 3, 6)``, ``c1, s1 (m,)``, ``x (m, 5)``, ``E (m, 2, 3)``,
+    ``aval (m,)``; outputs ``F (m, k)``, ``J (m, k, 5)``, ``S1f (m, 3, 6)``, ``Q (m, 6, 6)``."""
+    for i in range(x.shape[0]):
+        assemble(S1[i], S2[i], c1[i], s1[i], x[i], d, M2, L, E[i], aj, aval[i], F[i], J[i], S1f[i], Q[i])
+
+
+@kernel
+def _all_finite(a):
+    for v in a.flat:
+        if not math.isfinite(v):
+            return False
+    return True
+
+
+@kernel
+def _lu_solve5(A, b, rcond, dx):
+    """Solve A dx = b (5 x 5, unit columns) by LU with partial pivoting if |det A| > 5^2.5 rcond; False otherwise."""
+    n = 5
+    U = A.copy()
+    y = b.copy()
+    det = 1.0
+    for k in range(n):
+        p = k
+        big = abs(U[k, k])
+        for i in range(k + 1, n):
+            if abs(U[i, k]) > big:
+                big = abs(U[i, k])
+                p = i
+        if p != k:
+            det = -det
+            for j in range(n):
+                U[k, j], U[p, j] = U[p, j], U[k, j]
+            y[k], y[p] = y[p], y[k]
+        piv = U[k, k]
+        det *= piv
+        if piv == 0.0:
+            return False
+        for i in range(k + 1, n):
+            f = U[i, k] / piv
+            U[i, k] = f
+            for j in range(k + 1, n):
+                U[i, j] -= f * U[k, j]
+            y[i] -= f * y[k]
+    if not abs(det) > _DET_BOUND * rcond:
+        return False
+    for k in range(n - 1, -1, -1):
+        acc = y[k]
+        for j in range(k + 1, n):
+            acc -= U[k, j] * dx[j]
+        dx[k] = acc / U[k, k]
+    return True
+
+
+@kernel
+def _equilibrate(J):
+    k, n = J.shape
+    cn = np.empty(n)
+    Js = np.empty((k, n))
+    for j in range(n):
+        acc = 0.0
+        for i in range(k):
+            acc += J[i, j] * J[i, j]
+        c = math.sqrt(acc)
+        cn[j] = c if c > 0 else 1.0
+        for i in range(k):
+            Js[i, j] = J[i, j] / cn[j]
+    return Js, cn
+
+
+@kernel
+def step(J, F, rcond, dx):
+    """Newton step ``dx (5,)`` = -J^+ F of one system ``J (k, 5)``, ``F (k,)`` (see the module docstring)."""
+    k = J.shape[0]
+    if not (_all_finite(J) and _all_finite(F)):
+        dx[:] = math.nan
+        return
+    Js, cn = _equilibrate(J)
+    if k == 5:
+        b = np.empty(5)
+        for i in range(5):
+            b[i] = -F[i]
+        if _lu_solve5(Js, b, rcond, dx):
+            for j in range(5):
+                dx[j] /= cn[j]
+            return
+    # minimum-norm least-squares step with singular values below rcond s_max discarded (contact line)
+    A, cn2 = _equilibrate(Js)
+    V = _jacobi_svd(A)
+    smax = 0.0
+    sv = np.empty(5)
+    for a in range(5):
+        acc = 0.0
+        for i in range(k):
+            acc += A[i, a] * A[i, a]
+        sv[a] = math.sqrt(acc)
+        smax = max(smax, sv[a])
+    y = np.zeros(5)
+    for a in range(5):
+        if sv[a] > rcond * smax:
+            acc = 0.0
+            for i in range(k):
+                acc -= A[i, a] * F[i]
+            y[a] = acc / (sv[a] * sv[a])  # column a of A is s_a u_a
+    for j in range(5):
+        acc = 0.0
+        for a in range(5):
+            acc += V[j, a] * y[a]
+        dx[j] = acc / cn2[j] / cn[j]
+
+
+@kernel
+def _jacobi_svd(A):
+    """One-sided Jacobi SVD (Hestenes) of ``A (k, 5)``, k >= 5, in place: on return the columns of A are s_a u_a
+    (mutually orthogonal) and ``V (5, 5)`` is returned, A_in = A_out V^T. Rotations until every pair of columns is
+    orthogonal to 1e-15 relative (high relative accuracy; a few sweeps for 5 columns)."""
+    k, n = A.shape
+    V = np.eye(n)
+    for _ in range(60):
+        rotated = False
+        for p in range(n - 1):
+            for q in range(p + 1, n):
+                alpha = 0.0
+                beta = 0.0
+                gamma = 0.0
+                for i in range(k):
+                    alpha += A[i, p] * A[i, p]
+                    beta += A[i, q] * A[i, q]
+                    gamma += A[i, p] * A[i, q]
+                if gamma == 0.0 or abs(gamma) <= 1e-15 * math.sqrt(alpha * beta):
+                    continue
+                rotated = True
+                zeta = (beta - alpha) / (2.0 * gamma)
+                t = (1.0 if zeta >= 0 else -1.0) / (abs(zeta) + math.sqrt(1.0 + zeta * zeta))
+                c = 1.0 / math.sqrt(1.0 + t * t)
+                s = c * t
+                for i in range(k):
+                    up, uq = A[i, p], A[i, q]
+                    A[i, p] = c * up - s * uq
+                    A[i, q] = s * up + c * uq
+                for i in range(n):
+                    vp, vq = V[i, p], V[i, q]
+                    V[i, p] = c * vp - s * vq
+                    V[i, q] = s * vp + c * vq
+        if not rotated:
+            break
+    return V
+
+
+@kernel
+def step_batch(J, F, rcond):
+    """:func:`step` for every row of ``J (m, k, 5)``, ``F (m, k)``; returns ``dx (m, 5)``."""
+    out = np.empty((J.shape[0], 5))
+    for i in range(J.shape[0]):
+        step(J[i], F[i], rcond, out[i])
+    return out
+
+
+@kernel
+def tangent_batch(J, S1f, E, L, rcond):
+    """Path tangent dx/dphi1 (m, 5) = -J^+ dF/dphi1 from ``J (m, k, 5)`` and the fixed-frame pinion data
+    ``S1f (m, 3, 6)`` (a1 = +z: a1 x v = (-v_y, v_x, 0); extra rows of J get dF/dphi1 = 0)."""
+    m, k = J.shape[0], J.shape[1]
+    out = np.empty((m, 5))
+    Fp = np.zeros(k)
+    for i in range(m):
+        Fp[0] = -S1f[i, 1, 0]
+        Fp[1] = S1f[i, 0, 0]
+        Fp[2] = 0.0
+        nx, ny = -S1f[i, 1, 1], S1f[i, 0, 1]
+        for a in range(2):
+            Fp[3 + a] = L * (E[i, a, 0] * nx + E[i, a, 1] * ny)
+        step(J[i], Fp, rcond, out[i])
+    return out
+
+
+@kernel
+def _max_abs(a):
+    m = 0.0
+    for v in a:
+        if abs(v) > m:
+            m = abs(v)
+    return m
+
+
+@kernel
+def start(F, J, tol, res, best, stall, halved, active):
+    """Initial bookkeeping from the first evaluation ``F (M, k)``, ``J (M, k, 5)``; returns the number active."""
+    count = 0
+    for i in range(F.shape[0]):
+        ok = _all_finite(F[i]) and _all_finite(J[i])
+        res[i] = _max_abs(F[i]) if ok else math.inf
+        best[i] = res[i]
+        stall[i] = 0
+        halved[i] = 0
+        active[i] = ok and res[i] >= tol
+        count += active[i]
+    return count
+
+
+@kernel
+def propose(x, F, J, dx, halved, active, rcond, xn, idx):
+    """Trial points ``xn[:c]`` of the ``c`` active systems ``idx[:c]`` (fresh Newton step, or the halved previous
+    one after a trial that left the surfaces); returns c."""
+    c = 0
+    for i in range(x.shape[0]):
+        if active[i]:
+            if halved[i] == 0:
+                step(J[i], F[i], rcond, dx[i])
+            for j in range(5):
+                xn[c, j] = x[i, j] + dx[i, j]
+            idx[c] = i
+            c += 1
+    return c
+
+
+@kernel
+def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience, halvings, acc):
+    """Apply the trial evaluations ``Fn[:c]``, ``Jn[:c]`` (see the module docstring); ``acc[:c]`` tells which trials
+    were taken (their surface data should be kept by the caller); returns the number still active."""
+    for t in range(c):
+        i = idx[t]
+        fin = _all_finite(Fn[t]) and _all_finite(Jn[t])
+        if not fin and halved[i] < halvings:
+            for j in range(5):
+                dx[i, j] *= 0.5
+            halved[i] += 1
+            acc[t] = False
+            continue
+        acc[t] = True
+        x[i] = xn[t]
+        F[i] = Fn[t]
+        J[i] = Jn[t]
+        halved[i] = 0
+        r = _max_abs(Fn[t]) if fin else math.inf
+        res[i] = r
+        better = r < 0.5 * best[i]
+        best[i] = min(best[i], r)
+        stall[i] = 0 if better else stall[i] + 1
+        active[i] = r < math.inf and r >= tol and stall[i] < patience
+    count = 0
+    for i in range(x.shape[0]):
+        count += active[i]
+    return count
+
+
+@kernel
+def newton_jets(kind1, p1, kind2, p2, c1, s1, x0, E, have_E, d, M2, L, aj, aval, tol, max_iter, rcond, patience,
+                halvings):
+    """The whole batched Newton for two surfaces with compiled jets (:func:`spiralbevel._core.jets.surface_jet`).
+
+    Parameters
+    ----------
+    kind1, p1, kind2, p2 : int, (k,) float
+        Jets of pinion and gear.
+    c1, s1 : (M,) float
+        cos, sin of the effective pinion angles.
+    x0 : (M, 5) float
+    E : (M, 2, 3) float
+        Basis rows of the normal equations; filled from the gear normal at x0 unless ``have_E``.
+    d, M2, L :
+        Assembly constants (module docstring).
+    aj, aval : int, (M,) float
+        Anchor equation x_aj = aval (aj < 0: none).
+    tol, max_iter, rcond, patience, halvings :
+        See the module docstring.
+
+    Returns
+    -------
+    x (M, 5), F (M, k), J (M, k, 5), res (M,), S1, S2 (M, 3, 6), S1f (M, 3, 6), Q (M, 6, 6), iterations
+    """
+    M = x0.shape[0]
+    k = 6 if aj >= 0 else 5
+    x = x0.copy()
+    F = np.empty((M, k))
+    J = np.empty((M, k, 5))
+    S1 = np.empty((M, 3, 6))
+    S2 = np.empty((M, 3, 6))
+    S1f = np.empty((M, 3, 6))
+    Q = np.empty((M, 6, 6))
+    for i in range(M):
+        surface_jet(kind1, p1, x[i, 0], x[i, 1], S1[i])
+        surface_jet(kind2, p2, x[i, 2], x[i, 3], S2[i])
+        if not have_E:
+            basis_rows(S2[i], math.cos(x[i, 4]), math.sin(x[i, 4]), M2, E[i])
+        assemble(S1[i], S2[i], c1[i], s1[i], x[i], d, M2, L, E[i], aj, aval[i], F[i], J[i], S1f[i], Q[i])
+    res = np.empty(M)
+    best = np.empty(M)
+    stall = np.zeros(M, np.int64)
+    halved = np.zeros(M, np.int64)
+    active = np.zeros(M, np.bool_)
+    dx = np.zeros((M, 5))
+    xn = np.empty((M, 5))
+    idx = np.empty(M, np.int64)
+    acc = np.empty(M, np.bool_)
+    Fn = np.empty((M, k))
+    Jn = np.empty((M, k, 5))
+    T1 = np.empty((M, 3, 6))
+    T2 = np.empty((M, 3, 6))
+    T1f = np.empty((M, 3, 6))
+    TQ = np.empty((M, 6, 6))
+    n_active = start(F, J, tol, res, best, stall, halved, active)
+    it = 0
+    while it < max_iter and n_active > 0:
+        it += 1
+        c = propose(x, F, J, dx, halved, active, rcond, xn, idx)
+        for t in range(c):
+            i = idx[t]
+            surface_jet(kind1, p1, xn[t, 0], xn[t, 1], T1[t])
+            surface_jet(kind2, p2, xn[t, 2], xn[t, 3], T2[t])
+            assemble(T1[t], T2[t], c1[i], s1[i], xn[t], d, M2, L, E[i], aj, aval[i], Fn[t], Jn[t], T1f[t], TQ[t])
+        n_active = accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience,
+                          halvings, acc)
+        for t in range(c):
+            if acc[t]:
+                i = idx[t]
+                S1[i] = T1[t]
+                S2[i] = T2[t]
+                S1f[i] = T1f[t]
+                Q[i] = TQ[t]
+    return x, F, J, res, S1, S2, S1f, Q, it
