@@ -9,6 +9,7 @@ seed 003 equations F1 = |r x k| - R = 0 and F2 = r . k - L = 0 with k = (0, 0, 1
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -16,6 +17,7 @@ from scipy.spatial import cKDTree
 from spiralbevel._core.newton import solve_batched
 from spiralbevel.conventions import TOL, Member
 from spiralbevel.errors import DesignError, GeometryError
+from spiralbevel.generation.locate_blade import BladeLocator
 
 __all__ = ["BlankOutline", "locate_params"]
 
@@ -161,13 +163,13 @@ class Locator:
             "(low spiral angles, up to about 20 deg with a cutter radius near Rm): change gear_set.mean_spiral_angle "
             f"(a larger spiral angle) or gear_set.cutter_radius (now {gen.cutter.nominal_radius:.1f} mm at this blade)")
 
-    def solve(self, fun, x0, what, retry=None):
+    def solve(self, fun, x0, what, retry=None, dphi=0.0):
         """Batched Newton from ``x0``; ``retry(k)`` gives the k-th alternative starts for points that do not converge
         (the coarse table's nearest entry can sit on the degenerate fillet tip, where the map (u, psi_c) -> point
         folds)."""
         def reached(r):
             # a converged point is valid only where the cutter reaches it (|disc| <= 1 in the contact solve)
-            _, _, disc = self.gen.axial_radial(r.x[..., 0], r.x[..., 1])
+            _, _, disc = self.gen.axial_radial(r.x[..., 0], r.x[..., 1], dphi)
             r.converged = r.converged & (np.abs(disc) <= 1.0)
             return r
 
@@ -195,13 +197,94 @@ class Locator:
                 what, f"{int(bad.sum())} of {bad.size} points", "points on the generated flank", "mm",
                 f"the generated flank does not reach them (largest residual {np.max(res.residual):.3g} mm): "
                 "cutter/settings miss the blank or the face width")
-        _, _, disc = self.gen.axial_radial(res.x[..., 0], res.x[..., 1])
+        _, _, disc = self.gen.axial_radial(res.x[..., 0], res.x[..., 1], dphi)
         if np.any(np.abs(disc) > 1.0):
             raise GeometryError.single(what, "-", "points reached by the cutter", "-", "no contact")
         return res.x
 
-    def at_axial_radius(self, axial, radius, x0=None):
-        """(u, psi_c) of the flank point on the circle (axial, radius) about the member axis."""
+    @cached_property
+    def blade(self) -> BladeLocator:
+        """Locator of blade points in the (phi, psi_c) chart, regular across the fold of the (u, psi_c) chart."""
+        return BladeLocator(self.gen, self.outline, (self.gen.cp["u_j"] - 0.25 * (self.outline.ham + self.outline.hfm),
+                                                     self.u_range[1]), self.psi_span)
+
+    def _blade_or_fail(self, x, ok, what):
+        """(u, phi, psi_c) of blade solves, or the error naming the points the blade chart did not reach."""
+        ok = ok & (self.blade.on_branch(x)[1] >= self.gen.cp["u_j"] - 1e-9)
+        if not np.all(ok):
+            raise GeometryError.single(
+                what, f"{int((~ok).sum())} of {ok.size} points", "points on the generated flank", "mm",
+                "the generated blade flank does not reach them: cutter/settings miss the blank or the face width")
+        return self._triple(x)
+
+    def _triple(self, x):
+        _, _, u = self.gen.blade_axial_radial(x[..., 0], x[..., 1])
+        return np.stack([u, x[..., 0], x[..., 1]], -1)
+
+    def at_axial_radius(self, axial, radius):
+        """(u, phi, psi_c) (..., 3) of the flank point on the circle (axial, radius) about the member axis: on the
+        blade in the (phi, psi_c) chart, on the fillet (points the blade chart places below the junction) in the
+        (u, psi_c) chart."""
+        axial, radius = np.broadcast_arrays(np.asarray(axial, float), np.asarray(radius, float))
+        x = np.empty(axial.shape + (3,))
+        todo = np.ones(axial.shape, bool)
+        if not self.blade.empty:
+            xb, ok = self.blade.at_axial_radius(axial, radius)
+            ok &= self.blade.on_branch(xb)[1] >= self.gen.cp["u_j"] - 1e-9
+            x[ok] = self._triple(xb[ok])
+            todo = ~ok
+        if np.any(todo):
+            xu = self._at_axial_radius_u(axial[todo], radius[todo])
+            phi = self.gen.contact(xu[..., 0], xu[..., 1])["phi"]
+            x[todo] = np.stack([xu[..., 0], phi, xu[..., 1]], -1)
+        return x
+
+    def at_R_h(self, R, h, x0=None):
+        """(u, phi, psi_c) of the blade points at (R, h) (mm); ``x0`` (..., 2) optional starts in (phi, psi_c)."""
+        ax, rad = self.outline.axial_radius(np.asarray(R, float), np.asarray(h, float))
+        if self.blade.empty:
+            raise self._no_reach("grid(blade)")
+        x, ok = self.blade.at_axial_radius(ax, rad, x0)
+        return self._blade_or_fail(x, ok, "grid(blade)")
+
+    def junction(self, R):
+        """(u, phi, psi_c) of the fillet/blade junction line (u = u_j) at cone-distance coordinates R (mm)."""
+        if self.blade.empty:
+            raise self._no_reach("grid(face station)")
+        R = np.asarray(R, float)
+        x, ok = self.blade.at_R_u(R, np.full_like(R, self.gen.cp["u_j"]))
+        return self._blade_or_fail(x, ok, "grid(face station)")
+
+    def fillet_rows(self, R, u, xj):
+        """(u, phi, psi_c) of the fillet points at cone-distance coordinates R (n,) mm and blade parameters u (k,) mm
+        (descending from the junction), continued row by row from the junction points ``xj`` (n, 3).
+
+        Unknowns (phi, psi_c) at fixed u, equations f(u, phi, psi_c) = 0 (the equation of meshing itself, no choice
+        of root) and R(u, phi, psi_c) = R: regular across the fold of the (u, psi_c) chart, where only f_phi vanishes.
+        """
+        gen, ol = self.gen, self.outline
+        out = np.empty((len(R), len(u), 3))
+        x = xj[:, 1:].copy()
+        for k, uk in enumerate(u):
+            def fun(y, uk=uk):
+                ax, rad, f = gen.point_at(uk, y[..., 0], y[..., 1])
+                return np.stack([f, ol.Rh(ax, rad)[0] - R], -1)
+            res = solve_batched(fun, x, tol=TOL.newton_abs * 10, max_iter=TOL.max_iter,
+                                max_step=np.array([0.05, 0.05]))
+            if not np.all(res.converged):
+                raise GeometryError.single(
+                    "grid(fillet)", f"{int((~res.converged).sum())} of {len(R)} points at u = {uk:.4g} mm",
+                    "points on the generated fillet", "mm", "the edge radius does not generate them")
+            x = res.x
+            out[:, k] = np.concatenate([np.full((len(R), 1), uk), x], -1)
+        return out
+
+    def _no_reach(self, what):
+        return GeometryError.single(what, "-", "points on the generated flank", "mm",
+                                    "the generated blade flank does not reach the blank")
+
+    def _at_axial_radius_u(self, axial, radius, x0=None):
+        """(u, psi_c) of the flank point on the circle (axial, radius) about the member axis ((u, psi_c) chart)."""
         axial, radius = np.broadcast_arrays(np.asarray(axial, float), np.asarray(radius, float))
         gen = self.gen
 
@@ -212,33 +295,33 @@ class Locator:
         return self.solve(fun, self.start(axial, radius) if x0 is None else x0, "locate(axial, radius)",
                           retry=lambda k: self.starts(axial, radius, k))
 
-    def at_R_h(self, R, h, x0=None):
-        ax, rad = self.outline.axial_radius(np.asarray(R, float), np.asarray(h, float))
-        return self.at_axial_radius(ax, rad, x0)
-
-    def at_R_u(self, R, u):
-        """psi_c (with u) of the flank point at blade parameter u and cone-distance coordinate R."""
+    def at_R_u(self, R, u, dphi=0.0, psi0=None):
+        """psi_c (with u) of the flank point at blade parameter u and cone-distance coordinate R ((u, psi_c) chart,
+        for the fillet; the root of the equation of meshing nearest the reference angle plus ``dphi``, rad;
+        ``psi0`` optional starting cradle angles)."""
         R, u = np.broadcast_arrays(np.asarray(R, float), np.asarray(u, float))
         gen, ol = self.gen, self.outline
 
         def fun(x):
-            ax, rad, _ = gen.axial_radial(x[..., 0], x[..., 1])
+            ax, rad, _ = gen.axial_radial(x[..., 0], x[..., 1], dphi)
             Rx, _ = ol.Rh(ax, rad)
             return np.stack([Rx - R, x[..., 0] - u], -1)
 
         ax0, rad0 = ol.axial_radius(R, np.zeros_like(R) - ol.hfm)
         x0 = self.start(ax0, rad0)
         x0[..., 0] = u
+        if psi0 is not None:
+            x0[..., 1] = psi0
 
         def retry(k):
             x = self.starts(ax0, rad0, k)
             x[..., 0] = u
             return x
 
-        return self.solve(fun, x0, "grid(face station)", retry=retry)
+        return self.solve(fun, x0, "grid(face station)", retry=retry, dphi=dphi)
 
 
 def locate_params(gen, outline, axial, radius):
     """(u, psi_c) arrays of the flank points at the given member-frame axial positions and radii."""
     x = Locator(gen, outline).at_axial_radius(axial, radius)
-    return x[..., 0], x[..., 1]
+    return x[..., 0], x[..., 2]
