@@ -12,7 +12,8 @@ moves linearly with u): ``P`` and ``R`` do not depend on u and ``Q = Q_0 + u Ome
 
 regular wherever ``Omega_x sin(phi) != 0`` (Omega_x = omega_i cos(gamma), the roll rate times the cosine of the
 machine root angle; ``sin(phi) = 0`` only for a contact zone on the cutter-centre line parallel to the root line, a
-spiral angle near 90 deg). A circular-arc blade is solved by Newton's method in u from the straight-blade value.
+spiral angle near 90 deg); docs/theory/generation.md, Eq. (G9), the explicit form of the dual spiral article. A
+circular-arc blade is solved by Newton's method in u from the straight-blade value.
 
 The meridian used here is the blade (straight line or arc) *extended* below the fillet junction: points with
 u < u_j are not on the flank (the fillet is generated in the (u, psi_c) chart).

@@ -101,7 +101,8 @@ class ToothFlank:
         R = np.linspace(ol.Ri, ol.Re, n_face)
         # junction line (u = u_j) at each face station, in the (phi, psi_c) chart of the blade (regular where the
         # (u, psi_c) chart folds, docs/conventions.md "Fold of generation")
-        xj = loc.junction(R)
+        mp = self.mean_point()
+        xj = loc.junction(R, (mp.theta + np.pi - self.generator.mp["q"] + mp.psi_c, mp.psi_c))
         xj[:, 0] = cp["u_j"]             # the junction row exactly (solved to round-off)
         pj = self.generator.evaluate_at(xj[:, 0], xj[:, 1], xj[:, 2], curvature=False).points
         _, hj = ol.Rh(pj[:, 2], np.hypot(pj[:, 0], pj[:, 1]))
@@ -109,8 +110,8 @@ class ToothFlank:
         H = hj[:, None] + t[None, :] * (ol.h_face(R) - hj)[:, None]
         xb = np.empty(H.shape + (3,))
         xb[:, 0] = xj
-        xb[:, 1:] = loc.at_R_h(np.broadcast_to(R[:, None], H.shape)[:, 1:], H[:, 1:],
-                               np.broadcast_to(xj[:, None, 1:], (n_face, n_profile - 1, 2)))
+        for k in range(1, n_profile):       # row by row up the profile, each from the row below
+            xb[:, k] = loc.at_R_h(R, H[:, k], xb[:, k - 1, 1:])
         parts = [xb]
         if n_fillet:
             uf = np.linspace(cp["u_min"], cp["u_j"], n_fillet)

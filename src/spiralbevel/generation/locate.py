@@ -247,12 +247,13 @@ class Locator:
         x, ok = self.blade.at_axial_radius(ax, rad, x0)
         return self._blade_or_fail(x, ok, "grid(blade)")
 
-    def junction(self, R):
-        """(u, phi, psi_c) of the fillet/blade junction line (u = u_j) at cone-distance coordinates R (mm)."""
+    def junction(self, R, anchor=None):
+        """(u, phi, psi_c) of the fillet/blade junction line (u = u_j) at cone-distance coordinates R (mm); ``anchor``
+        (2,) optional (phi, psi_c) of the mean point, the first start of every station."""
         if self.blade.empty:
             raise self._no_reach("grid(face station)")
         R = np.asarray(R, float)
-        x, ok = self.blade.at_R_u(R, np.full_like(R, self.gen.cp["u_j"]))
+        x, ok = self.blade.at_R_u(R, np.full_like(R, self.gen.cp["u_j"]), anchor)
         return self._blade_or_fail(x, ok, "grid(face station)")
 
     def fillet_rows(self, R, u, xj):

@@ -33,16 +33,17 @@ class BladeLocator:
         Cradle angles of the table, -psi_span..psi_span.
     phi_span : float, rad
         Cutter angles around the reference angle toward the contact zone (``reference_angle``: where the cutter
-        circle crosses the root line) that belong to the flank. The face spans less than +-0.25 rad of cutter angle
-        (face width up to 0.3 R_e, cutter radius from 0.8 R_m); farther parts of the envelope are where the cutter
-        circle would cross the blank again, away from the design contact zone.
+        circle crosses the root line) that belong to the flank; the start table covers +-0.5 rad. The face spans
+        less than about 0.35 rad of cutter angle (face width up to 0.3 R_e, cutter radius from 0.8 R_m), and the
+        mean point lies up to about 0.25 rad from the reference angle (small cutters); farther parts of the
+        envelope are where the cutter circle would cross the blank again, away from the design contact zone.
     """
 
-    def __init__(self, gen, outline, u_range, psi_span=1.2, phi_span=0.5, n_psi=97, n_phi=51):
+    def __init__(self, gen, outline, u_range, psi_span=1.2, phi_span=0.75, n_psi=97, n_phi=51):
         self.gen, self.outline, self.phi_span = gen, outline, phi_span
         self.u_j = gen.cp["u_j"]
-        P, D = np.meshgrid(np.linspace(-psi_span, psi_span, n_psi), np.linspace(-phi_span, phi_span, n_phi),
-                           indexing="ij")
+        # starts from the inner part of the window (the contact zone itself); solutions anywhere in it
+        P, D = np.meshgrid(np.linspace(-psi_span, psi_span, n_psi), np.linspace(-0.5, 0.5, n_phi), indexing="ij")
         Phi = gen.reference_angle(P) + D
         ax, rad, u = gen.blade_axial_radial(Phi, P)
         R, h = outline.Rh(ax, rad)
@@ -104,11 +105,17 @@ class BladeLocator:
         tgt = np.stack([axial, radius], -1)
         starts = ([] if x0 is None else [np.broadcast_to(x0, axial.shape + (2,))])
         starts += [self._nearest(self._tab, tgt, axial.shape, k) for k in range(4)]
-        return self._solve(fun, starts)
 
-    def at_R_u(self, R, u):
+        def accept(x):      # on the blade: the extended blade cone below the junction generates another surface
+            with np.errstate(invalid="ignore"):
+                return gen.blade_axial_radial(x[..., 0], x[..., 1])[2] >= self.u_j - 1e-9
+
+        return self._solve(fun, starts, accept)
+
+    def at_R_u(self, R, u, anchor=None):
         """(phi, psi_c) and converged mask of the blade points with cone-distance coordinate R (mm) and blade
-        parameter u (mm, >= u_j)."""
+        parameter u (mm, >= u_j); ``anchor`` (2,) (phi, psi_c) of a flank point (the mean point) is the first start,
+        so that the line u = const is the one through the flank's own contact zone."""
         R, u = np.broadcast_arrays(np.asarray(R, float), np.asarray(u, float))
         gen, ol = self.gen, self.outline
 
@@ -121,7 +128,8 @@ class BladeLocator:
         # nearest in (R, u)
         ax0, rad0 = ol.axial_radius(R, ol.h_root(R))
         near_root = np.stack([ax0, rad0], -1)
-        starts = [self._nearest(self._tab, near_root, R.shape, k) for k in range(3)]
+        starts = [] if anchor is None else [np.broadcast_to(np.asarray(anchor, float), R.shape + (2,))]
+        starts += [self._nearest(self._tab, near_root, R.shape, k) for k in range(3)]
         starts += [self._nearest(self._Ru, np.stack([R, u], -1), R.shape, k) for k in range(3)]
         depth = ol.ham + ol.hfm
 
