@@ -88,6 +88,7 @@ def main(n=40, seed=1):
     t0 = time.perf_counter()
     for _ in range(n):
         text, label = sample(rng)
+        t1 = time.perf_counter()
         try:
             why = develop(text)
         except SpiralBevelError as err:
@@ -95,6 +96,8 @@ def main(n=40, seed=1):
         except Exception as err:  # noqa: BLE001 - a traceback is itself a finding of this bench
             why = f"UNCAUGHT {type(err).__name__}: {err}"
             crashes.append(label)
+        print(f"  {'developed' if why is None else 'NOT developed'} ({time.perf_counter() - t1:.1f} s): {label}",
+              flush=True)
         if why is None:
             ok += 1
         else:
