@@ -248,6 +248,7 @@ def _synthesize_sides(sy, blank, setups, syn):
                 if default and tried >= DEFAULT_MAX_SYNTHESES:
                     break
                 continue
+            names = [free] + [f for f in names if f != free]     # the set that worked first for the next candidates
             if not default:
                 best = (0, res, free)
                 break
