@@ -131,6 +131,17 @@ def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK
     return int(np.sum(~np.isfinite(res.te) | res.edge_contact))
 
 
+def _angles_hit(blank, flank) -> bool:
+    """True when the flank's mean-point pressure and spiral angles are within the developed-pair check
+    (``CHECK_ANGLE_DEG``) of the design."""
+    from ..generation.basic_settings_solve import flank_fit
+
+    f = flank_fit(blank, flank)
+    tol = math.radians(CHECK_ANGLE_DEG)
+    return (abs(f.pressure_angle - f.pressure_angle_design) <= tol
+            and abs(f.spiral_angle - f.spiral_angle_design) <= tol)
+
+
 def _default_spec_class():
     from ..io.design_schema import SynthesisSpec
 
@@ -219,7 +230,7 @@ def _synthesize_sides(sy, blank, setups, syn):
         # DEFAULT_MAX_SYNTHESES syntheses per side
         cands = DEFAULT_CANDIDATES if default else ((sy.path_direction, 0.0),)
         mid = 0.5 * (float(blank.ham1) - float(blank.ham2))     # middle of the working depth below the pitch line
-        best, tried, last = None, 0, None
+        best, spare, tried, last = None, None, 0, None
         for eta, frac in cands:
             if frac and not mid:
                 continue
@@ -253,10 +264,17 @@ def _synthesize_sides(sy, blank, setups, syn):
                 best = (0, res, free)
                 break
             off = bearing_off_flank(blank, res.pinion_flank, gear.flank)
-            if best is None or off < best[0]:
+            # M off the pitch point moves the pinion's mean-point angles off the design (by a few 0.01 deg): such a
+            # candidate is taken only when it keeps the bearing inside the flanks and the angles within the check
+            if frac and off == 0 and not _angles_hit(blank, res.pinion_flank):
+                off = _CHECK_POSITIONS
+            if (best is None or off < best[0]) and (off == 0 or not frac):
                 best = (off, res, free)
+            elif spare is None or off < spare[0]:
+                spare = (off, res, free)
             if off == 0 or tried >= DEFAULT_MAX_SYNTHESES:
                 break
+        best = best if best is not None else spare
         if best is None:   # every default candidate failed: say so, with the last reason
             raise ConvergenceError(f"{name} side: the default local synthesis of the pinion found no pinion flank for "
                                    f"any path direction ({', '.join(f'{e:g}' for e in DEFAULT_PATH_DIRECTIONS)} deg; "
