@@ -282,6 +282,12 @@ def _synthesize_sides(sy, blank, setups, syn):
                                    "(synthesis.path_direction, synthesis.semi_major_axis, synthesis.te_magnitude)",
                                    getattr(last, "iterations", 0), getattr(last, "residual", float("inf")),
                                    getattr(last, "last", None)) from last
+        if default and best[0] >= _CHECK_POSITIONS:   # no candidate's pinion flank covers the face and meshes
+            raise ConvergenceError(f"{name} side: the default local synthesis of the pinion gave no pinion flank that "
+                                   f"covers the face and meshes with the gear ({tried} syntheses, path directions "
+                                   f"{', '.join(f'{e:g}' for e in DEFAULT_PATH_DIRECTIONS)} deg); give a [synthesis] "
+                                   "section (synthesis.path_direction, synthesis.semi_major_axis, "
+                                   "synthesis.te_magnitude)", tried, float("inf"), None)
         _, res, free = best
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
                                               res.pinion_flank, f"local synthesis ({name} side, free = {free})")
