@@ -97,8 +97,8 @@ DEFAULT_DEPTH_FRACTIONS = (0.0, 0.5)
 
 #: (path direction deg, depth fraction) of the default synthesis, in the order tried; at most
 #: ``DEFAULT_MAX_SYNTHESES`` local syntheses per side (failed ones included) bound the search
-DEFAULT_CANDIDATES = tuple((eta, 0.0) for eta in DEFAULT_PATH_DIRECTIONS) + tuple(
-    (eta, 0.5) for eta in DEFAULT_PATH_DIRECTIONS[:3])
+DEFAULT_CANDIDATES = tuple((eta, frac) for frac in DEFAULT_DEPTH_FRACTIONS
+                           for eta in (DEFAULT_PATH_DIRECTIONS if not frac else DEFAULT_PATH_DIRECTIONS[:3]))
 DEFAULT_MAX_SYNTHESES = 12
 
 #: positions of the TCA that checks the default bearing over one mesh cycle
