@@ -7,7 +7,8 @@ deg, cutter radius 0.8-1.1 R_m), and runs for each what
 local synthesis of both pinion sides (the developed pair by default) and the TCA of both sides. A design counts as
 developed when every step succeeds and both TCA sides have contact at every position. Prints the fraction developed,
 the time per design, and every failure with its error message (a failure must be a clear ``SpiralBevelError``, never a
-traceback or NaN).
+traceback or NaN); of the developed ones, how many have all four flanks' mean-point angles within 0.05 deg of the
+design and a bearing inside both flanks (no edge contact).
 
 Usage: ``python bench/bench_robustness.py [n_designs] [seed]`` (default 40 designs, seed 1).
 """
@@ -64,8 +65,10 @@ def sample(rng):
     return TEMPLATE.format(z1=z1, z2=z2, sigma=sigma, m=m, b=b, beta=beta, hand=hand, rc=rc), label
 
 
-def develop(text):
-    """None when the design is developed, else the failure message."""
+def develop(text, beta):
+    """(None, checks) when the design is developed, else (the failure message, None). ``checks``: the largest
+    deviation (deg) of the four flanks' mean-point pressure and spiral angles from the design (20 deg, ``beta``), and
+    whether the TCA shows an edge contact (bearing off a flank) at some position."""
     spec = parse_design(text)
     blank = blank_from_design(spec)
     setups = fm.setup_flanks(spec, blank)
@@ -74,34 +77,49 @@ def develop(text):
     for name in ("drive", "coast"):
         sec = section[name]
         if "error" in sec:
-            return f"TCA {name}: {sec['error']}"
+            return f"TCA {name}: {sec['error']}", None
         if sec["no_contact_positions_deg"]:
-            return f"TCA {name}: no contact at {len(sec['no_contact_positions_deg'])} positions"
+            return f"TCA {name}: no contact at {len(sec['no_contact_positions_deg'])} positions", None
         if not np.all(np.isfinite(sec["transmission_error_arcsec"])):
-            return f"TCA {name}: NaN transmission error"
-    return None
+            return f"TCA {name}: NaN transmission error", None
+    dev = max(max(abs(math.degrees(st.flank.mean_point().pressure_angle) - 20.0),
+                  abs(math.degrees(st.flank.mean_point().spiral_angle) - beta)) for st in setups.values())
+    edge = any(section[n]["edge_contact_positions_deg"] for n in ("drive", "coast"))
+    return None, (dev, edge)
 
 
 def main(n=40, seed=1):
     rng = np.random.default_rng(seed)
     ok, reasons, crashes = 0, collections.Counter(), []
+    n_angles = n_inside = 0
     t0 = time.perf_counter()
     for _ in range(n):
         text, label = sample(rng)
+        t1 = time.perf_counter()
+        beta = float(text.split("mean_spiral_angle = ")[1].split()[0])     # the design file's value
+        checks = None
         try:
-            why = develop(text)
+            why, checks = develop(text, beta)
         except SpiralBevelError as err:
             why = f"{type(err).__name__}: {str(err).splitlines()[0][:160]}"
         except Exception as err:  # noqa: BLE001 - a traceback is itself a finding of this bench
             why = f"UNCAUGHT {type(err).__name__}: {err}"
             crashes.append(label)
+        extra = "" if checks is None else (f", angles within {checks[0]:.3f} deg of the design"
+                                           f"{', edge contact' if checks[1] else ', bearing inside the flanks'}")
+        print(f"  {'developed' if why is None else 'NOT developed'} ({time.perf_counter() - t1:.1f} s): {label}{extra}",
+              flush=True)
         if why is None:
             ok += 1
+            n_angles += checks[0] <= 0.05
+            n_inside += not checks[1]
         else:
             reasons[why.split(":")[0] + ": " + why.split(":", 1)[-1][:110]] += 1
             print(f"  not developed: {label}: {why[:200]}")
     dt = time.perf_counter() - t0
     print(f"developed {ok} of {n} designs ({100.0 * ok / n:.0f} %), {dt / n:.2f} s per design")
+    print(f"  of these: mean-point angles of all four flanks within 0.05 deg of the design: {n_angles}; bearing "
+          f"inside both flanks (no edge contact in the 21-position TCA of either side): {n_inside}")
     for why, k in reasons.most_common():
         print(f"  {k:3d} x {why}")
     if crashes:

@@ -87,15 +87,9 @@ def test_bearing_check_agrees_with_the_contact_status(report):
             assert "synthesis.path_direction" in bearing[0]
 
 
-def test_default_bearing_inside_the_flank(report, request):
+def test_default_bearing_inside_the_flank(report):
     """The TCA's physical-contact status at every position of the mesh cycle: a real-flank contact (no position without
     contact) and no edge contact (the contact point inside the pinion and gear flank boundaries) on both sides."""
-    if request.node.callspec.id == "S75-LH":
-        # known defect (issue 11): since the edge-contact search also starts from a neighbouring real contact (it
-        # used to miss edge contacts that the brute-force oracle finds), the default pair of this design shows a
-        # pinion-edge contact at the last position of the drive cycle: the default synthesis does not yet keep the
-        # bearing inside the flank here
-        request.applymarker(pytest.mark.xfail(strict=True, reason="default bearing reaches a pinion edge (issue 11)"))
     for name in ("drive", "coast"):
         t = report["tca"][name]
         assert t["status"] == "ok", (name, t["edge_contacts"])

@@ -1,15 +1,15 @@
-"""A flank whose contact region of generation ends inside the blank (the two cutter angles of the equation of meshing
-merge there) gives a clear error naming the design-file key, not a bare locate failure."""
+"""The fold of generation: where the two cutter angles that solve the equation of meshing merge inside the face (low
+spiral angles), the (u, psi_c) chart of the generated flank folds, but the flank itself is regular and really cut.
+The (phi, psi_c) chart of the blade generates it through the fold; checked here against the equation of meshing,
+numerical tangents and a brute-force test of the cutter's swept material."""
 
-import re
 import warnings
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
 
+from spiralbevel._core import generation as _g
 from spiralbevel.conventions import Member, Side
-from spiralbevel.errors import GeometryError
 from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
 from spiralbevel.job.blank import blank_from_design
@@ -31,26 +31,93 @@ kind = "face-milled"
 """
 
 
-def test_fold_inside_the_face_is_named():
+@pytest.fixture(scope="module")
+def flank():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         spec = parse_design(DESIGN)
         blank = blank_from_design(spec)
-        flank = fm._basic_setups(spec, blank)[(Member.GEAR, Side.CONVEX)].flank
-    with pytest.raises(GeometryError) as info:
-        flank.grid(9, 5, curvature=False)
-    msg = str(info.value)
-    assert "gear_set.mean_spiral_angle" in msg and "gear_set.cutter_radius" in msg
-    R_fold = float(re.search(r"at R = ([0-9.]+) mm", msg).group(1))
-    ol, gen = flank.outline, flank.generator
-    assert ol.Ri < R_fold < ol.Re
-    # independently: on the blade row u = u_j, the cradle angle where |disc| = 1 (brentq on the closed-form
-    # discriminant) maps inside the face, and there the two roots of the equation of meshing coincide
-    u = gen.cp["u_j"]
-    P = np.linspace(-1.2, 1.2, 241)
-    d = gen.axial_radial(np.full_like(P, u), P)[2]
-    k = np.nonzero(np.diff(np.sign(np.abs(d) - 1.0)))[0]
-    psi = [brentq(lambda p: abs(gen.axial_radial(np.array(u), np.array(p))[2]) - 1.0, P[i], P[i + 1], xtol=1e-13)
-           for i in k]
-    R = np.array([ol.Rh(*gen.axial_radial(np.array(u), np.array(p))[:2])[0] for p in psi])
-    assert np.any((R > ol.Ri) & (R < ol.Re))
+        return fm._basic_setups(spec, blank)[(Member.GEAR, Side.CONVEX)].flank
+
+
+def _to_machine(p, psi, mp):
+    """Canonical member-frame points -> machine frame at cradle angle psi (inverse of ``_core.generation.to_member``)."""
+    g = mp["gamma"]
+    psi_i, _, _ = _g.roll(psi, mp)
+    E, _, _ = _g.offset(psi, mp)
+    c, s = np.cos(psi_i), np.sin(psi_i)
+    xb, yb, zb = c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1], p[..., 2]
+    v = np.stack([xb * np.sin(g) - zb * np.cos(g), yb, xb * np.cos(g) + zb * np.sin(g)], -1)
+    return v + np.stack([np.zeros_like(E), E, np.full_like(E, -mp["XB"])], -1) + mp["XD"] * _g.work_axis(mp)
+
+
+def test_fold_lies_inside_the_face_and_the_flank_is_generated_through_it(flank):
+    g = flank.grid(9, 5, curvature=False)
+    gen = flank.generator
+    # the fold is inside this face: part of the grid lies on the second root of the equation of meshing at its own
+    # (u, psi_c), which the (u, psi_c) chart does not reach
+    kernel_root = gen.contact(g.u, g.psi_c)
+    phi = g.theta + np.pi - gen.mp["q"] + g.psi_c
+    other = np.abs(np.angle(np.exp(1j * (kernel_root["phi"] - phi)))) > 1e-8
+    assert 0 < other.sum() < other.size
+    # every point is on the equation of meshing (relative velocity from its own code, seed 001 Eq. (13))
+    assert np.max(np.abs(flank.meshing_residual(g.u, g.theta, g.psi_c))) < 1e-12
+    # and on the blade, from the fillet junction up to the face cone, toe to heel
+    ol = flank.outline
+    R, h = ol.Rh(g.points[..., 2], np.hypot(g.points[..., 0], g.points[..., 1]))
+    assert np.allclose(R[:, 0], np.linspace(ol.Ri, ol.Re, 9), atol=1e-8)
+    assert np.allclose(h[:, -1], ol.h_face(R[:, -1]), atol=1e-8)
+    assert np.all(g.u >= gen.cp["u_j"] - 1e-12)
+
+
+def test_flank_is_regular_across_the_fold(flank):
+    """Numerical tangents of the (phi, psi_c) chart (central differences) span the tangent plane of the flank normal
+    at every grid point, on both roots: no cusp, no singular point where the (u, psi_c) chart folds."""
+    g = flank.grid(9, 5, curvature=False)
+    gen = flank.generator
+    phi = g.theta + np.pi - gen.mp["q"] + g.psi_c
+    h = 1e-6
+
+    def pts(dphi, dpsi):
+        return gen.evaluate_blade(phi + dphi, g.psi_c + dpsi, curvature=False).points
+
+    t1 = (pts(h, 0) - pts(-h, 0)) / (2 * h)
+    t2 = (pts(0, h) - pts(0, -h)) / (2 * h)
+    c = np.cross(t1, t2)
+    area = np.linalg.norm(c, axis=-1)
+    assert np.all(area > 1e-3 * np.linalg.norm(t1, axis=-1) * np.linalg.norm(t2, axis=-1))
+    # central differences with h = 1e-6 rad on points of size 1e2 mm: about 1e-8 relative
+    assert np.all(np.abs(np.einsum("...i,...i", c / area[..., None], g.normals)) > 1 - 1e-8)
+
+
+def test_no_point_of_the_flank_is_cut_away(flank):
+    """Brute force on the swept material: a point of the true generated flank is touched by the blade at its own
+    cradle angle and lies outside the blade's cutting side at every other one. For the straight blade the cutter's
+    material side is s (rho_blade(z) - rho) > 0 (rho the distance from the cutter axis at height z); sampled over
+    the whole roll, both roots' points stay outside (to round-off), so the part beyond the fold is real flank, not
+    undercut or secondary cutting."""
+    g = flank.grid(9, 5, curvature=False)
+    gen = flank.generator
+    cp, mp = gen.cp, gen.mp
+    s, c0 = cp["s"], cp["chi0"]
+    psis = np.linspace(g.psi_c.min() - 0.3, g.psi_c.max() + 0.3, 1201)
+
+    def penetration(points):
+        p = gen._mirror(points.reshape(-1, 3))       # the canonical (left-hand) machine's member frame
+        pen = np.full(len(p), -np.inf)
+        for psi in psis:
+            r = _to_machine(p, np.full(len(p), psi), mp)
+            C = mp["S"] * np.array([np.cos(np.pi - mp["q"] + psi), np.sin(np.pi - mp["q"] + psi)])
+            rho = np.hypot(r[:, 0] - C[0], r[:, 1] - C[1])
+            rho_b = cp["Rh"] - s * r[:, 2] / np.sin(c0) * np.cos(c0)      # u = -z / sin(chi0) on the straight blade
+            near = (r[:, 2] < -cp["u_j"] * np.sin(c0)) & (np.abs(rho_b - rho) < 5.0)   # this blade, above the fillet
+            pen = np.maximum(pen, np.where(near, s * (rho_b - rho), -np.inf))
+        return pen
+
+    pen = penetration(g.points)
+    # the largest penetration is the touch at the generating cradle angle (0 to round-off of 1e2 mm coordinates)
+    assert np.all(np.isfinite(pen)) and np.max(pen) < 1e-10
+    # the test sees a cut: the same points moved 0.01 mm into the tooth space (along the outward normal) lie in the
+    # swept material by about 0.01 mm times the blade's radial normal component
+    moved = penetration(g.points + 0.01 * g.normals)
+    assert np.all(moved > 0.005)

@@ -33,8 +33,10 @@ MISALIGNMENTS = {"aligned": Misalignment(), "pinion_axial": Misalignment(pinion_
 def _box(surface):
     """Parameter box (2, 2) holding the real flank (from the flank's own grid), widened by 2 %."""
     g = surface.flank.grid(31, 15, curvature=False)
-    lo = np.array([g.u.min(), g.psi_c.min()])
-    hi = np.array([g.u.max(), g.psi_c.max()])
+    # first parameter: the cutter angle phi of the (phi, psi_c) chart, or u of the (u, psi_c) chart (multi-point)
+    p0 = surface.cutter_angle(g.theta, g.psi_c) if hasattr(surface, "cutter_angle") else g.u
+    lo = np.array([p0.min(), g.psi_c.min()])
+    hi = np.array([p0.max(), g.psi_c.max()])
     d = 0.02 * (hi - lo)
     return np.stack([lo - d, hi + d], 1)
 

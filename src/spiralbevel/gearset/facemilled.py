@@ -89,6 +89,18 @@ DEFAULT_SYNTHESIS = dict(sides=("drive", "coast"), path_direction=0.0, semi_majo
 #: near a tooth top (a small gear addendum), a path turned toward the lengthwise direction keeps the contact off it
 DEFAULT_PATH_DIRECTIONS = (0.0, -20.0, 20.0, -40.0, 40.0, -55.0, 55.0)
 
+#: depth of the mean contact point M below the gear's pitch line, as a fraction of the offset (h_am1 - h_am2)/2 of the
+#: middle of the working depth from it: 0 (the mean pitch point) first, then M moved half way toward the middle of
+#: the working depth (on a pinion with few teeth the gear addendum is small and a bearing through the pitch point
+#: runs onto the gear's top edge before the transfer point)
+DEFAULT_DEPTH_FRACTIONS = (0.0, 0.5)
+
+#: (path direction deg, depth fraction) of the default synthesis, in the order tried; at most
+#: ``DEFAULT_MAX_SYNTHESES`` local syntheses per side (failed ones included) bound the search
+DEFAULT_CANDIDATES = tuple((eta, frac) for frac in DEFAULT_DEPTH_FRACTIONS
+                           for eta in (DEFAULT_PATH_DIRECTIONS if not frac else DEFAULT_PATH_DIRECTIONS[:3]))
+DEFAULT_MAX_SYNTHESES = 12
+
 #: positions of the TCA that checks the default bearing over one mesh cycle
 _CHECK_POSITIONS = 41   # as the job's TCA (run_pair_tca)
 
@@ -114,6 +126,17 @@ def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK
     except (NoContactError, ConvergenceError):
         return n_positions
     return int(np.sum(~np.isfinite(res.te) | res.edge_contact))
+
+
+def _angles_hit(blank, flank) -> bool:
+    """True when the flank's mean-point pressure and spiral angles are within the developed-pair check
+    (``CHECK_ANGLE_DEG``) of the design."""
+    from ..generation.basic_settings_solve import flank_fit
+
+    f = flank_fit(blank, flank)
+    tol = math.radians(CHECK_ANGLE_DEG)
+    return (abs(f.pressure_angle - f.pressure_angle_design) <= tol
+            and abs(f.spiral_angle - f.spiral_angle_design) <= tol)
 
 
 def _default_spec_class():
@@ -198,45 +221,70 @@ def _synthesize_sides(sy, blank, setups, syn):
         # the design file's set of solved settings first; for the default synthesis the other sets after it
         default = getattr(sy, "_default", False)
         names = [sy.free] + ([f for f in _FREE if f != sy.free] if default else [])
-        # the default synthesis also adapts the path direction: the first of DEFAULT_PATH_DIRECTIONS whose pair keeps
-        # the bearing inside both flanks over the whole mesh cycle (TCA: real contact, no edge, at every position);
-        # if none does, the one with the fewest positions off the flank
-        etas = DEFAULT_PATH_DIRECTIONS if default else (sy.path_direction,)
-        best = None
-        for eta in etas:
+        # the default synthesis also adapts the path direction and the depth of M: the first of DEFAULT_CANDIDATES
+        # whose pair keeps the bearing inside both flanks over the whole mesh cycle (TCA: real contact, no edge, at
+        # every position); if none does, the one with the fewest positions off the flank; at most
+        # DEFAULT_MAX_SYNTHESES syntheses per side
+        cands = DEFAULT_CANDIDATES if default else ((sy.path_direction, 0.0),)
+        mid = 0.5 * (float(blank.ham1) - float(blank.ham2))     # middle of the working depth below the pitch line
+        best, spare, tried, last = None, None, 0, None
+        for eta, frac in cands:
+            if frac and not mid:
+                continue
+            res = None
             for k, free in enumerate(names):
+                if default and tried >= DEFAULT_MAX_SYNTHESES:
+                    break
+                tried += 1
                 try:
                     res = syn.synthesize_pinion(
                         gear.cutter, gear.settings, blank, side=s1, eta=math.radians(eta),
                         semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
-                        approach=sy.approach, free=getattr(syn, _FREE[free]),
+                        approach=sy.approach, free=getattr(syn, _FREE[free]), depth=frac * mid,
                         pinion_cutter_hint=pin.cutter if hint else None,
                         pinion_settings_hint=pin.settings if hint else None)
                     break
                 except (ConvergenceError, GeometryError) as err:
-                    # the default tries the next set of settings, then the next path direction; a given
+                    # the default tries the next set of settings, then the next candidate; a given
                     # [synthesis] section gets its own error
                     if not default and (k == len(names) - 1 or not isinstance(err, ConvergenceError)):
                         raise
+                    last = err
                     if k == len(names) - 1 or not isinstance(err, ConvergenceError):
-                        res, last = None, err
                         break
             if res is None:
+                if default and tried >= DEFAULT_MAX_SYNTHESES:
+                    break
                 continue
+            names = [free] + [f for f in names if f != free]     # the set that worked first for the next candidates
             if not default:
                 best = (0, res, free)
                 break
             off = bearing_off_flank(blank, res.pinion_flank, gear.flank)
-            if best is None or off < best[0]:
+            # M off the pitch point moves the pinion's mean-point angles off the design (by a few 0.01 deg): such a
+            # candidate is taken only when it keeps the bearing inside the flanks and the angles within the check
+            if frac and off == 0 and not _angles_hit(blank, res.pinion_flank):
+                off = _CHECK_POSITIONS
+            if (best is None or off < best[0]) and (off == 0 or not frac):
                 best = (off, res, free)
-            if off == 0:
+            elif spare is None or off < spare[0]:
+                spare = (off, res, free)
+            if off == 0 or tried >= DEFAULT_MAX_SYNTHESES:
                 break
-        if best is None:   # every default path direction failed: say so, with the last reason
+        best = best if best is not None else spare
+        if best is None:   # every default candidate failed: say so, with the last reason
             raise ConvergenceError(f"{name} side: the default local synthesis of the pinion found no pinion flank for "
-                                   f"any path direction ({', '.join(f'{e:g}' for e in etas)} deg; last: {last}); "
-                                   "give a [synthesis] section (synthesis.path_direction, synthesis.semi_major_axis, "
-                                   "synthesis.te_magnitude)", getattr(last, "iterations", 0),
-                                   getattr(last, "residual", float("inf")), getattr(last, "last", None)) from last
+                                   f"any path direction ({', '.join(f'{e:g}' for e in DEFAULT_PATH_DIRECTIONS)} deg; "
+                                   f"{tried} syntheses; last: {last}); give a [synthesis] section "
+                                   "(synthesis.path_direction, synthesis.semi_major_axis, synthesis.te_magnitude)",
+                                   getattr(last, "iterations", 0), getattr(last, "residual", float("inf")),
+                                   getattr(last, "last", None)) from last
+        if default and best[0] >= _CHECK_POSITIONS:   # no candidate's pinion flank covers the face and meshes
+            raise ConvergenceError(f"{name} side: the default local synthesis of the pinion gave no pinion flank that "
+                                   f"covers the face and meshes with the gear ({tried} syntheses, path directions "
+                                   f"{', '.join(f'{e:g}' for e in DEFAULT_PATH_DIRECTIONS)} deg); give a [synthesis] "
+                                   "section (synthesis.path_direction, synthesis.semi_major_axis, "
+                                   "synthesis.te_magnitude)", tried, float("inf"), None)
         _, res, free = best
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
                                               res.pinion_flank, f"local synthesis ({name} side, free = {free})")

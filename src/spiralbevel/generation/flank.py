@@ -81,7 +81,7 @@ class ToothFlank:
         for (u, psi_c), with theta in closed form; raises ``GeometryError`` if a point is not on the flank.
         """
         x = self._locator.at_axial_radius(axial, radius)
-        return self.evaluate(x[..., 0], x[..., 1], curvature)
+        return self.generator.evaluate_at(x[..., 0], x[..., 1], x[..., 2], curvature)
 
     def grid(self, n_face: int = 31, n_profile: int = 15, n_fillet: int = 0, curvature: bool = True) -> FlankPoints:
         """Flank grid clipped to the blank, shape (n_face, n_fillet + n_profile).
@@ -99,28 +99,27 @@ class ToothFlank:
             raise DesignError.single("n_fillet", n_fillet, "0 or an integer >= 2", "-")
         ol, loc, cp = self.outline, self._locator, self.generator.cp
         R = np.linspace(ol.Ri, ol.Re, n_face)
-        # junction line (u = u_j) at each face station
-        xj = loc.at_R_u(R, np.full_like(R, cp["u_j"]))
-        pj = self.generator.points(xj[:, 0], xj[:, 1])
+        # junction line (u = u_j) at each face station, in the (phi, psi_c) chart of the blade (regular where the
+        # (u, psi_c) chart folds, docs/conventions.md "Fold of generation")
+        mp = self.mean_point()
+        xj = loc.junction(R, (mp.theta + np.pi - self.generator.mp["q"] + mp.psi_c, mp.psi_c))
+        xj[:, 0] = cp["u_j"]             # the junction row exactly (solved to round-off)
+        pj = self.generator.evaluate_at(xj[:, 0], xj[:, 1], xj[:, 2], curvature=False).points
         _, hj = ol.Rh(pj[:, 2], np.hypot(pj[:, 0], pj[:, 1]))
         t = np.linspace(0.0, 1.0, n_profile)
         H = hj[:, None] + t[None, :] * (ol.h_face(R) - hj)[:, None]
-        # start from the junction: u grows by about dh / cos(alpha) along the blade (continuation)
-        x0 = np.empty(H.shape + (2,))
-        x0[..., 0] = cp["u_j"] + (H - hj[:, None]) / np.cos(self.cutter.blade_angle)
-        x0[..., 1] = xj[:, None, 1]
-        xb = np.empty_like(x0)
+        xb = np.empty(H.shape + (3,))
         xb[:, 0] = xj
-        xb[:, 1:] = loc.at_R_h(np.broadcast_to(R[:, None], H.shape)[:, 1:], H[:, 1:], x0[:, 1:])
+        for k in range(1, n_profile):       # row by row up the profile, each from the row below
+            xb[:, k] = loc.at_R_h(R, H[:, k], xb[:, k - 1, 1:])
         parts = [xb]
         if n_fillet:
             uf = np.linspace(cp["u_min"], cp["u_j"], n_fillet)
-            xf = loc.at_R_u(np.broadcast_to(R[:, None], (n_face, n_fillet)),
-                            np.broadcast_to(uf[None, :], (n_face, n_fillet)))
-            xf[:, -1] = xj
+            xf = loc.fillet_rows(R, uf[-2::-1], xj)[:, ::-1]
+            xf = np.concatenate([xf, xj[:, None]], 1)
             parts.insert(0, xf)
         x = np.concatenate(parts, axis=1)
-        return self.evaluate(x[..., 0], x[..., 1], curvature)
+        return self.generator.evaluate_at(x[..., 0], x[..., 1], x[..., 2], curvature)
 
     def boundary(self, n: int = 31) -> dict:
         """Closed boundary of the flank including its fillet, for CAD export.

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from spiralbevel._core import generation as _g
+from spiralbevel._core import generation_blade as _gb
 from spiralbevel.conventions import Hand
 from spiralbevel.errors import GeometryError
 from spiralbevel.generation.results import FlankPoints
@@ -35,15 +36,55 @@ class Generator:
     def _mirror(self, v):
         return v * _MIRROR if self.hand is Hand.RIGHT else v
 
-    def contact(self, u, psi):
-        """Closed-form contact (cutter angle) at blade parameter u and cradle angle psi_c."""
+    def contact(self, u, psi, dphi=0.0):
+        """Closed-form contact (cutter angle) at blade parameter u and cradle angle psi_c.
+
+        Of the two roots of the equation of meshing, the one nearer the reference angle (``reference_angle``) plus
+        ``dphi`` (rad, broadcast with u and psi_c) is taken.
+        """
         psi = np.asarray(psi, float)
-        ref = _g.reference_angle(psi, self.mp, self.cutter.nominal_radius)
+        ref = _g.reference_angle(psi, self.mp, self.cutter.nominal_radius) + dphi
         return _g.solve_contact(u, psi, self.cp, self.mp, ref)
 
-    def axial_radial(self, u, psi):
-        """(axial z, radius) of the generated point in the member frame, and the meshing discriminant."""
-        sol = self.contact(u, psi)
+    def reference_angle(self, psi):
+        """Absolute cutter angle (rad) toward the contact zone at cradle angle psi_c (``_core.generation``)."""
+        return _g.reference_angle(np.asarray(psi, float), self.mp, self.cutter.nominal_radius)
+
+    def blade_axial_radial(self, phi, psi):
+        """(axial z, radius) of the blade point at cutter angle phi and cradle angle psi_c (the (phi, psi_c) chart,
+        ``_core.generation_blade``), with its blade parameter u (mm) and d f / d u of the equation of meshing."""
+        psi = np.asarray(psi, float)
+        r, u = _gb.blade_points(phi, psi, self.cp, self.mp)
+        ax, rad = _g.axial_radial(r, np.broadcast_to(psi, u.shape), self.mp)
+        return ax, rad, u
+
+    def point_at(self, u, phi, psi):
+        """(axial z, radius) about the member axis of the cutter point (u, phi) at cradle angle psi_c, and the
+        equation of meshing's value f there (``_core.generation_blade.meshing_function``; zero on the flank)."""
+        u, phi, psi = np.broadcast_arrays(*(np.asarray(x, float) for x in (u, phi, psi)))
+        rho, z, chi, dchi = _g.profile(u, self.cp)
+        r = _g.contact_point(dict(phi=phi, psi=psi, rho=rho, z=z), self.mp)
+        ax, rad = _g.axial_radial(r, psi, self.mp)
+        return ax, rad, _gb.meshing_function(u, phi, psi, self.cp, self.mp)
+
+    def evaluate_blade(self, phi, psi, curvature=True) -> FlankPoints:
+        """Flank points of the blade at cutter angle phi and cradle angle psi_c (rad), u from the equation of
+        meshing (the (phi, psi_c) chart, regular across the fold of the (u, psi_c) chart)."""
+        phi, psi = np.broadcast_arrays(np.asarray(phi, float), np.asarray(psi, float))
+        u, _ = _gb.blade_u(phi, psi, self.cp, self.mp)
+        return self.evaluate_at(u, phi, psi, curvature)
+
+    def evaluate_at(self, u, phi, psi, curvature=True) -> FlankPoints:
+        """Flank points at (u, phi, psi_c) that satisfy the equation of meshing (the caller's root)."""
+        u, phi, psi = np.broadcast_arrays(*(np.asarray(x, float) for x in (u, phi, psi)))
+        rho, z, chi, dchi = _g.profile(u, self.cp)
+        sol = dict(phi=phi, psi=psi, rho=rho, z=z, chi=chi, dchi=dchi, u=u, theta=phi - (np.pi - self.mp["q"] + psi))
+        return self._evaluate(sol, curvature)
+
+    def axial_radial(self, u, psi, dphi=0.0):
+        """(axial z, radius) of the generated point in the member frame, and the meshing discriminant (root choice
+        as :meth:`contact`)."""
+        sol = self.contact(u, psi, dphi)
         r = _g.contact_point(sol, self.mp)
         ax, rad = _g.axial_radial(r, sol["psi"], self.mp)
         return ax, rad, sol["disc"]
@@ -61,6 +102,9 @@ class Generator:
         if np.any(np.abs(sol["disc"]) > 1.0):
             raise GeometryError.single("settings", "-", "settings for which the cutter generates the flank", "-",
                                        "the equation of meshing has no solution: the cutter does not reach the blank")
+        return self._evaluate(sol, curvature)
+
+    def _evaluate(self, sol, curvature):
         mp, psi = self.mp, sol["psi"]
         r, n_h, t_h, _ = _g.machine_state(sol, self.cp, mp)
         n_in = self.s * n_h

@@ -1,8 +1,11 @@
 """Face-milled generated flanks as TCA contact surfaces (the ``ContactSurface`` protocol of ``contact_surface.py``).
 
-Parameters are (u, psi_c): the blade parameter (mm) and the cradle angle of generation (rad); the cutter angle that
-satisfies the equation of meshing of generation is solved inside ``ToothFlank.evaluate`` (closed form). The flank may
-be turned about the member axis by ``rotation`` (rad) to phase it in its member frame.
+:class:`GeneratedSurface`: parameters (phi, psi_c), the absolute cutter angle and the cradle angle of generation
+(rad); the blade parameter u that satisfies the equation of meshing of generation is solved in closed form (straight
+blade; Newton for an arc blade, ``_core.generation_blade``). This chart is regular where the (u, psi_c) chart of
+:class:`GeneratedSurfaceUPsi` folds (the two cutter angles of the equation of meshing merge inside the face at low
+spiral angles). The flank may be turned about the member axis by ``rotation`` (rad) to phase it in its member frame.
+The domain is the blade (u >= u_j); the fillet below it is the "fillet" boundary of edge contact.
 """
 
 from __future__ import annotations
@@ -12,15 +15,109 @@ import math
 import numpy as np
 
 from .._core.generation import axial_radial, contact_point
+from .._core.generation_blade import blade_jet
 from .._core.generation_jet import generated_jet
 from .._core.rotations import rot_z
 from ..conventions import Hand
 
-__all__ = ["GeneratedSurface", "phased_for_pair"]
+__all__ = ["GeneratedSurface", "GeneratedSurfaceUPsi", "phased_for_pair"]
+
+#: mm: margin below which a point counts as on a flank boundary (round-off of points solved onto an edge)
+EDGE_TOL = 1e-9
 
 
 class GeneratedSurface:
-    """A :class:`~spiralbevel.generation.flank.ToothFlank` seen by TCA.
+    """A :class:`~spiralbevel.generation.flank.ToothFlank` seen by TCA, parameters (phi, psi_c) in rad.
+
+    Parameters
+    ----------
+    flank : ToothFlank
+    rotation : float, rad
+        Turn about +z applied to points and normals (member frame).
+    """
+
+    fd_step = (1e-6, 1e-6)
+    boundary_names = ("toe", "heel", "top", "fillet")
+
+    def __init__(self, flank, rotation: float = 0.0):
+        self.flank = flank
+        self.rotation = float(rotation)
+        self._R = rot_z(self.rotation)
+        mp = flank.mean_point()
+        self.reference_params = np.array([self.cutter_angle(mp.theta, mp.psi_c), mp.psi_c])
+        self.mean_point = mp
+
+    def cutter_angle(self, theta, psi_c):
+        """Absolute cutter angle phi = theta + pi - q + psi_c (rad) of a cutter angle theta measured from the ray
+        cradle axis -> cutter centre (``FlankPoints.theta``)."""
+        return np.asarray(theta, float) + math.pi - self.flank.generator.mp["q"] + np.asarray(psi_c, float)
+
+    @property
+    def _Rm(self):
+        """The phasing turn after the mirror image y -> -y of a right-hand member (``Generator._mirror``)."""
+        return self._R * np.array([1.0, -1.0, 1.0]) if self.flank.generator.hand is Hand.RIGHT else self._R
+
+    def _jet(self, params):
+        params = np.asarray(params, float)
+        gen = self.flank.generator
+        with np.errstate(invalid="ignore", divide="ignore"):
+            S, u, _ = blade_jet(params[..., 0], params[..., 1], gen.cp, gen.mp)
+        off = ~np.isfinite(u)
+        return S, u, off
+
+    def evaluate(self, params):
+        """Points (..., 3) mm and outward normals (..., 3) at ``params (..., 2) = (phi, psi_c)``; NaN where the chart
+        is singular, so that solvers see "no surface there" and step back."""
+        S, _, off = self._jet(params)
+        r, n = S[..., 0] @ self._Rm.T, S[..., 1] @ self._Rm.T
+        if np.any(off):
+            r, n = np.where(off[..., None], np.nan, r), np.where(off[..., None], np.nan, n)
+        return r, n
+
+    def derivatives(self, params):
+        """Points, outward normals and their derivatives w.r.t. (phi, psi_c) in closed form
+        (:func:`spiralbevel._core.generation_blade.blade_jet`), NaN where the chart is singular.
+
+        Returns
+        -------
+        r : (..., 3) float, mm
+        n : (..., 3) float
+        dr : (..., 3, 2) float
+            Columns dr/dphi and dr/dpsi_c (mm/rad).
+        dn : (..., 3, 2) float
+            Columns dn/dphi and dn/dpsi_c (1/rad).
+        """
+        S, _, off = self._jet(params)
+        S = self._Rm @ S
+        if np.any(off):
+            S = np.where(off[..., None, None], np.nan, S)
+        return S[..., 0], S[..., 1], S[..., 2:4], S[..., 4:6]
+
+    def boundary_margins(self, params):
+        """Signed margins (..., 4) of (phi, psi_c) to the flank boundaries ``boundary_names`` (>= 0 on the flank):
+        R - R_i and R_e - R (mm, toe and heel), h_face(R) - h (mm, top edge) and u - u_j (mm, fillet junction)."""
+        S, u, _ = self._jet(params)
+        r = S[..., 0]
+        ol = self.flank.outline
+        with np.errstate(invalid="ignore"):
+            R, h = ol.Rh(r[..., 2], np.hypot(r[..., 0], r[..., 1]))
+            return np.stack([R - ol.Ri, ol.Re - R, ol.h_face(R) - h, u - self.flank.generator.cp["u_j"]], -1)
+
+    def contains(self, params):
+        """True where (phi, psi_c) lies on the flank: between toe and heel, above the fillet junction, below the top.
+
+        A point on a boundary counts as on the flank within ``EDGE_TOL`` (a point that a solver put on an edge has
+        margins of round-off size, of either sign)."""
+        g = self.boundary_margins(params)
+        with np.errstate(invalid="ignore"):
+            return np.all(g >= -EDGE_TOL, axis=-1)
+
+
+class GeneratedSurfaceUPsi:
+    """A :class:`~spiralbevel.generation.flank.ToothFlank` seen by TCA in the (u, psi_c) chart (the cutter angle
+    the root of the equation of meshing nearer the reference angle). It folds where the two roots merge (low spiral
+    angles, docs/conventions.md "Fold of generation"): :class:`GeneratedSurface` is the chart TCA uses; this one
+    serves the seed 001 multi-point control, whose system is written in (u, psi_c).
 
     Parameters
     ----------

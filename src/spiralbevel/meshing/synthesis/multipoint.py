@@ -42,7 +42,7 @@ from ...conventions import Member
 from ...errors import ConvergenceError, DesignError, Problem
 from ...generation import generate_flank
 from ..contact_problem import ContactProblem
-from ..generated_surface import GeneratedSurface
+from ..generated_surface import GeneratedSurfaceUPsi
 from ..tca import solve_tca
 from ..tca_result import ARCSEC
 from ._multipoint_system import MultiPointSystem
@@ -51,7 +51,7 @@ from .offset_law import INTERPOLATIONS, OffsetLaw
 __all__ = ["MultiPointResult", "multipoint_control", "multipoint_tca"]
 
 
-class _Surface(GeneratedSurface):
+class _Surface(GeneratedSurfaceUPsi):
     """A generated flank as a TCA contact surface with given reference parameters (the contact at M): the flank's
     own mean point is not located (on a flank generated with a piecewise-linear offset law it may fall between the
     characteristics of two law segments)."""

@@ -1,0 +1,141 @@
+"""Location of blade points of a generated flank in the (phi, psi_c) chart (``_core.generation_blade``).
+
+The (u, psi_c) chart of the generated flank folds where the two cutter angles that solve the equation of meshing of
+generation merge (at low spiral angles that fold runs through the face width); the (phi, psi_c) chart, with the blade
+parameter u solved from the equation of meshing, is regular there (docs/conventions.md, "Fold of generation").
+Points on the blade (u >= u_j) are located here by batched Newton solves in (phi, psi_c); the fillet keeps the
+(u, psi_c) chart (``locate.Locator``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from spiralbevel._core.newton import solve_batched
+from spiralbevel.conventions import TOL
+
+__all__ = ["BladeLocator"]
+
+_MAX_STEP = np.array([0.05, 0.05])      # rad: Newton steps in phi and psi_c
+
+
+class BladeLocator:
+    """Newton solves for blade points of one ``Generator`` in the (phi, psi_c) chart, with a start table.
+
+    Parameters
+    ----------
+    gen : Generator
+    outline : BlankOutline
+    u_range : (2,) float, mm
+        Blade parameters of the table (from below the fillet junction to above the face cone).
+    psi_span : float, rad
+        Cradle angles of the table, -psi_span..psi_span.
+    phi_span : float, rad
+        Cutter angles around the reference angle toward the contact zone (``reference_angle``: where the cutter
+        circle crosses the root line) that belong to the flank; the start table covers +-0.5 rad. The face spans
+        less than about 0.35 rad of cutter angle (face width up to 0.3 R_e, cutter radius from 0.8 R_m), and the
+        mean point lies up to about 0.25 rad from the reference angle (small cutters); farther parts of the
+        envelope are where the cutter circle would cross the blank again, away from the design contact zone.
+    """
+
+    def __init__(self, gen, outline, u_range, psi_span=1.2, phi_span=0.75, n_psi=97, n_phi=51):
+        self.gen, self.outline, self.phi_span = gen, outline, phi_span
+        self.u_j = gen.cp["u_j"]
+        # starts from the inner part of the window (the contact zone itself); solutions anywhere in it
+        P, D = np.meshgrid(np.linspace(-psi_span, psi_span, n_psi), np.linspace(-0.5, 0.5, n_phi), indexing="ij")
+        Phi = gen.reference_angle(P) + D
+        ax, rad, u = gen.blade_axial_radial(Phi, P)
+        R, h = outline.Rh(ax, rad)
+        depth = outline.ham + outline.hfm
+        mR = 0.3 * (outline.Re - outline.Ri)
+        with np.errstate(invalid="ignore"):
+            ok = np.isfinite(u) & (u >= u_range[0]) & (u <= u_range[1])
+            ok &= (R > outline.Ri - mR) & (R < outline.Re + mR)
+            ok &= (h > outline.h_root(R) - depth) & (h < outline.h_face(R) + depth)
+        self.empty = not np.any(ok)
+        if self.empty:
+            return
+        self._par = np.stack([Phi[ok], P[ok]], -1)
+        self._tab = cKDTree(np.stack([ax[ok], rad[ok]], -1))
+        self._Ru = cKDTree(np.stack([R[ok], u[ok]], -1))
+
+    # ------------------------------------------------------------------------------------------------------------
+    def on_branch(self, x):
+        """True where (phi, psi_c) is a regular point of the chart within the table's cutter-angle window."""
+        phi, psi = x[..., 0], x[..., 1]
+        _, _, u = self.gen.blade_axial_radial(phi, psi)
+        d = np.angle(np.exp(1j * (phi - self.gen.reference_angle(psi))))
+        return np.isfinite(u) & (np.abs(d) <= self.phi_span), u
+
+    def _solve(self, fun, starts, accept=None):
+        """Batched Newton from the first start; the following starts for the systems not yet converged (or whose
+        solution ``accept(x)`` rejects). Returns (x (..., 2), converged (...))."""
+        x, conv = None, None
+        for x0 in starts:
+            res = solve_batched(fun, x0, tol=TOL.newton_abs * 10, max_iter=TOL.max_iter, max_step=_MAX_STEP)
+            ok, _ = self.on_branch(res.x)
+            ok &= res.converged
+            if accept is not None:
+                ok &= accept(res.x)
+            if x is None:
+                x, conv = res.x, ok
+            else:
+                keep = ~conv & ok
+                x = np.where(keep[..., None], res.x, x)
+                conv = conv | keep
+            if np.all(conv):
+                break
+        return x, conv
+
+    def _nearest(self, tree, tgt, shape, k=0):
+        _, idx = tree.query(tgt.reshape(-1, 2), k=k + 1)
+        idx = np.minimum(np.reshape(idx, (len(tgt.reshape(-1, 2)), -1))[:, k], len(self._par) - 1)
+        return self._par[idx].reshape(shape + (2,))
+
+    def at_axial_radius(self, axial, radius, x0=None):
+        """(phi, psi_c) (..., 2) and converged mask (...) of the blade points on the circles (axial, radius)."""
+        axial, radius = np.broadcast_arrays(np.asarray(axial, float), np.asarray(radius, float))
+        gen = self.gen
+
+        def fun(x):
+            ax, rad, _ = gen.blade_axial_radial(x[..., 0], x[..., 1])
+            return np.stack([rad - radius, ax - axial], -1)
+
+        tgt = np.stack([axial, radius], -1)
+        starts = ([] if x0 is None else [np.broadcast_to(x0, axial.shape + (2,))])
+        starts += [self._nearest(self._tab, tgt, axial.shape, k) for k in range(4)]
+
+        def accept(x):      # on the blade: the extended blade cone below the junction generates another surface
+            with np.errstate(invalid="ignore"):
+                return gen.blade_axial_radial(x[..., 0], x[..., 1])[2] >= self.u_j - 1e-9
+
+        return self._solve(fun, starts, accept)
+
+    def at_R_u(self, R, u, anchor=None):
+        """(phi, psi_c) and converged mask of the blade points with cone-distance coordinate R (mm) and blade
+        parameter u (mm, >= u_j); ``anchor`` (2,) (phi, psi_c) of a flank point (the mean point) is the first start,
+        so that the line u = const is the one through the flank's own contact zone."""
+        R, u = np.broadcast_arrays(np.asarray(R, float), np.asarray(u, float))
+        gen, ol = self.gen, self.outline
+
+        def fun(x):
+            ax, rad, uu = gen.blade_axial_radial(x[..., 0], x[..., 1])
+            Rx, _ = ol.Rh(ax, rad)
+            return np.stack([Rx - R, uu - u], -1)
+
+        # starts: table points nearest the root-cone point at R (the junction runs close to the root), then those
+        # nearest in (R, u)
+        ax0, rad0 = ol.axial_radius(R, ol.h_root(R))
+        near_root = np.stack([ax0, rad0], -1)
+        starts = [] if anchor is None else [np.broadcast_to(np.asarray(anchor, float), R.shape + (2,))]
+        starts += [self._nearest(self._tab, near_root, R.shape, k) for k in range(3)]
+        starts += [self._nearest(self._Ru, np.stack([R, u], -1), R.shape, k) for k in range(3)]
+        depth = ol.ham + ol.hfm
+
+        def accept(x):      # the junction line's point of this face station, not one of its continuation
+            ax, rad, _ = gen.blade_axial_radial(x[..., 0], x[..., 1])
+            with np.errstate(invalid="ignore"):
+                return np.abs(ol.Rh(ax, rad)[1] - ol.h_root(R)) < depth
+
+        return self._solve(fun, starts, accept)

@@ -1,0 +1,46 @@
+"""The default synthesis search is bounded: when no local synthesis succeeds, at most DEFAULT_MAX_SYNTHESES are tried
+per side, and the error names the cause and the [synthesis] keys to give."""
+
+import warnings
+
+import pytest
+
+from spiralbevel.errors import ConvergenceError
+from spiralbevel.io.design_file import parse_design
+from spiralbevel.job import facemilled as fm
+from spiralbevel.job.blank import blank_from_design
+from spiralbevel.meshing import synthesis as syn
+
+DESIGN = """
+[gear_set]
+pinion_teeth = 12
+gear_teeth = 41
+shaft_angle = 90
+module = 5
+face_width = 30
+normal_pressure_angle = 20
+mean_spiral_angle = 35
+pinion_hand = "RH"
+[flank]
+kind = "face-milled"
+"""
+
+
+def test_failing_syntheses_are_bounded_and_named(monkeypatch):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        spec = parse_design(DESIGN)
+        blank = blank_from_design(spec)
+        setups = fm._basic_setups(spec, blank)
+    calls = []
+
+    def fail(*args, **kw):
+        calls.append(kw["eta"])
+        raise ConvergenceError("pinion machine settings: Newton did not reach the synthesized geometry", 7, 1.0)
+
+    monkeypatch.setattr(syn, "synthesize_pinion", fail)
+    with pytest.raises(ConvergenceError) as info:
+        fm.synthesize_sides(spec, blank, setups, fm.effective_synthesis(spec, blank))
+    assert len(calls) == fm.DEFAULT_MAX_SYNTHESES        # the first side stops at the bound
+    msg = str(info.value)
+    assert "drive side" in msg and "synthesis.path_direction" in msg and "Newton did not reach" in msg
