@@ -61,11 +61,11 @@ def test_bearing_inside_the_flank_at_the_design_te_level(report):
     for name in ("drive", "coast"):
         t = report["tca"][name]
         assert t["status"] == "ok", (name, t["edge_contacts"])
-        assert t["contact_positions"] == t["positions"], (name, t["no_contact_positions_rad"])
-        assert not t["edge_contact_positions_rad"], name
+        assert t["contact_positions"] == t["positions"], (name, t["no_contact_positions_deg"])
+        assert not t["edge_contact_positions_deg"], name
         # least-squares parabola through the TE within 0.4 of half a mesh cycle, at half a mesh cycle (as
         # tests/cli/test_developed_pair.py): the synthesis fixes the second derivative at the mean point, +-10 %
-        phi, te = np.array(t["pinion_rotation_rad"]), np.array(t["transmission_error_arcsec"])
+        phi, te = np.radians(t["pinion_rotation_deg"]), np.array(t["transmission_error_arcsec"])
         near = np.abs(phi) <= 0.4 * half
         level = -np.polyfit(phi[near], te[near], 2)[0] * half**2
         assert level == pytest.approx(DEFAULT_SYNTHESIS["te_magnitude"], rel=0.10), (name, level)

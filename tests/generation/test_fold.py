@@ -41,7 +41,8 @@ def flank():
 
 
 def _to_machine(p, psi, mp):
-    """Canonical member-frame points -> machine frame at cradle angle psi (inverse of ``_core.generation.to_member``)."""
+    """Canonical member-frame points -> machine frame at cradle angle psi (inverse of
+    ``_core.generation.to_member``)."""
     g = mp["gamma"]
     psi_i, _, _ = _g.roll(psi, mp)
     E, _, _ = _g.offset(psi, mp)

@@ -142,7 +142,7 @@ def test_blade_chart_against_the_u_psi_chart_and_the_equation_of_meshing():
     from spiralbevel._core.generation_jet import generated_jet
     from spiralbevel.generation.meshing import Generator
 
-    for s_blade, cp, mp, Rc in _kernel_cases():
+    for _s_blade, cp, mp, Rc in _kernel_cases():
         u = np.linspace(cp["u_j"] + 0.1, 6, 8)
         psi = np.linspace(-0.3, 0.3, 7)
         U, P = (a.ravel() for a in np.meshgrid(u, psi, indexing="ij"))
@@ -156,7 +156,8 @@ def test_blade_chart_against_the_u_psi_chart_and_the_equation_of_meshing():
         assert np.allclose(u1, U, atol=1e-10)
         assert np.allclose(S1[..., 0], S0[..., 0], atol=1e-10) and np.allclose(S1[..., 1], S0[..., 1], atol=1e-12)
         # chain rule: d/du|psi (old) = D_phi * phi_u, d/dpsi|u (old) = D_psi + D_phi * phi_psi with phi_u = 1/u_phi,
-        # phi_psi = -u_psi/u_phi, and (u_phi, u_psi) read off the new chart's dr: dr_new = dr_old @ d(u, psi)/d(phi, psi)
+        # phi_psi = -u_psi/u_phi, and (u_phi, u_psi) read off the new chart's dr:
+        # dr_new = dr_old @ d(u, psi)/d(phi, psi)
         # -> compare dr_old @ [[u_phi, u_psi], [0, 1]] with dr_new, u_phi and u_psi by the chart's own implicit rule
         e = 1e-6
         up = (blade_points(phi + e, P, cp, mp)[1] - blade_points(phi - e, P, cp, mp)[1]) / (2 * e)
