@@ -56,15 +56,18 @@ def test_conjugate_touches_the_synthesized_pinion_at_the_mean_contact(hypoid):
 
 
 def test_conjugate_is_an_envelope(hypoid):
-    """The conjugate surface, parametrized by the wheel's (u, psi_c), has the mapped normal as its own normal."""
+    """The conjugate surface, parametrized by the wheel's (phi, psi_c), has the mapped normal as its own normal."""
     syn, (_, c2, _) = hypoid
 
     def conj(q):
         return conjugate_pinion_points(*c2.evaluate(q), syn.kinematics)[:2]
 
-    h = np.array([1e-4, 1e-6])                  # mm, rad: truncation ~1e-10 relative
-    for dq in ((0.0, 0.0), (1.0, 0.02), (-1.5, -0.03)):
-        q = c2.reference_params + np.array(dq)
+    h = np.array([1e-5, 1e-6])                  # rad, rad: truncation ~1e-10 relative, round-off ~1e-11
+    mp = c2.mean_point
+    for du, dpsi in ((0.0, 0.0), (1.0, 0.02), (-1.5, -0.03)):   # mm of blade, rad of cradle from the mean point
+        u, psi = mp.u + du, mp.psi_c + dpsi
+        q = np.array([c2.flank.generator.contact(u, psi)["phi"], psi])    # the same point in the (phi, psi_c) chart
+        assert c2.contains(q)
         _, n = conj(q)
         for k in range(2):
             e = np.zeros(2)

@@ -34,8 +34,10 @@ def pair():
 
 
 def _box(surface):
+    """Parameter box (2, 2) of the flank's own grid in the surface's (phi, psi_c) chart, widened by 2 %."""
     g = surface.flank.grid(31, 15, curvature=False)
-    lo, hi = np.array([g.u.min(), g.psi_c.min()]), np.array([g.u.max(), g.psi_c.max()])
+    phi = surface.cutter_angle(g.theta, g.psi_c)
+    lo, hi = np.array([phi.min(), g.psi_c.min()]), np.array([phi.max(), g.psi_c.max()])
     d = 0.02 * (hi - lo)
     return np.stack([lo - d, hi + d], 1)
 

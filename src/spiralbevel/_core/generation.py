@@ -194,15 +194,17 @@ def work_axis(mp):
 def reference_angle(psi, mp, Rc):
     """Absolute cutter angle phi that points from the cutter centre to the wanted contact zone (branch choice).
 
-    The zone is where the nominal cutter circle (radius Rc) crosses the root line -x far from the apex.
+    The zone is where the nominal cutter circle (radius Rc) crosses the member's root line far from the apex: the
+    line y = E of the cradle plane parallel to -x, through the work axis displaced by the blank offset E at
+    psi_c = 0 (``mp["E"]``, kernel sign; the root line -x itself at zero offset). Where the circle does not reach
+    that line, the cutter angle square to the root line, -pi/2 + psi_c.
     """
-    S, q = mp["S"], mp["q"]
-    b0 = np.pi - q + np.asarray(psi, float)
-    d2 = Rc**2 - (S * np.sin(q)) ** 2
-    if d2 > 0.0:
-        xr = -S * np.cos(q) - np.sqrt(d2)
-        return np.arctan2(-S * np.sin(b0), xr - S * np.cos(b0))
-    return b0 * 0.0 - HALF_PI + np.asarray(psi, float)
+    S, q, E = mp["S"], mp["q"], np.asarray(mp["E"], float)
+    psi = np.asarray(psi, float)
+    b0 = np.pi - q + psi
+    d2 = Rc**2 - (S * np.sin(q) - E) ** 2
+    xr = -S * np.cos(q) - np.sqrt(np.maximum(d2, 0.0))
+    return np.where(d2 > 0.0, np.arctan2(E - S * np.sin(b0), xr - S * np.cos(b0)), psi - HALF_PI)
 
 
 def solve_contact(u, psi, cp, mp, phi_ref):

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .generation import offset, profile, roll
+from .generation import offset, profile, reference_angle, roll
 
 __all__ = ["generated_jet"]
 
@@ -96,11 +96,7 @@ def _jet(u, psi, cp, mp, Rc):
     disc = -R / np.hypot(P, Q)
     half = np.arccos(np.clip(disc, -1.0, 1.0))
     base = np.arctan2(Q, P)
-    d2 = Rc**2 - (S * np.sin(q)) ** 2
-    if d2 > 0.0:
-        ref = np.arctan2(-S * sb, (-S * np.cos(q) - np.sqrt(d2)) - S * cb)
-    else:
-        ref = psi - 0.5 * np.pi
+    ref = reference_angle(psi, mp, Rc)
     # the root nearer the reference angle: |wrap(base + half - ref)| <= |wrap(base - half - ref)| exactly when
     # sin(base - ref) sin(half) <= 0, and sin(half) >= 0
     phi = np.where(np.sin(base - ref) <= 0.0, base + half, base - half)

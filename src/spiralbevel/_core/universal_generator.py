@@ -156,16 +156,15 @@ def solve_theta(M, dM, rho, z, nr, nz, theta_ref):
 
 def reference_theta(psi, up, Rc):
     """Branch-choosing cutter angle: toward the point where the nominal cutter circle (radius Rc, untilted, in the
-    cradle plane) crosses the root line far from the machine centre; the cutter angle is measured from the ray
-    machine centre -> cutter centre."""
+    cradle plane) crosses the member's root line far from the machine centre (the line y = E parallel to the root
+    line -X_m through the work axis displaced by the blank offset E at psi_c = 0, kernel sign); the cutter angle is
+    measured from the ray machine centre -> cutter centre."""
     psi = np.asarray(psi, float)
-    S, q = up["S"], up["q"]
+    S, q, E = up["S"], up["q"], np.asarray(up["E"], float)
     b0 = np.pi - q + psi
-    d2 = Rc**2 - (S * np.sin(q)) ** 2
-    if d2 > 0.0:
-        xr = -S * np.cos(q) - np.sqrt(d2)
-        return np.arctan2(-S * np.sin(b0), xr - S * np.cos(b0)) - b0
-    return -0.5 * np.pi + psi - b0
+    d2 = Rc**2 - (S * np.sin(q) - E) ** 2
+    xr = -S * np.cos(q) - np.sqrt(np.maximum(d2, 0.0))
+    return np.where(d2 > 0.0, np.arctan2(E - S * np.sin(b0), xr - S * np.cos(b0)), -0.5 * np.pi + psi) - b0
 
 
 def member_state(M, rho, z, nr, nz, theta):

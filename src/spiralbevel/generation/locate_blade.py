@@ -33,9 +33,10 @@ class BladeLocator:
         Cradle angles of the table, -psi_span..psi_span.
     phi_span : float, rad
         Cutter angles around the reference angle toward the contact zone (``reference_angle``: where the cutter
-        circle crosses the root line) that belong to the flank; the start table covers +-0.5 rad. The face spans
-        less than about 0.35 rad of cutter angle (face width up to 0.3 R_e, cutter radius from 0.8 R_m), and the
-        mean point lies up to about 0.25 rad from the reference angle (small cutters); farther parts of the
+        circle crosses the member's root line, displaced by the blank offset) that belong to the flank; the start
+        table covers +-0.5 rad. The face spans less than about 0.35 rad of cutter angle (face width up to 0.3 R_e,
+        cutter radius from 0.8 R_m), and the mean point lies up to about 0.25 rad from the reference angle (small
+        cutters); farther parts of the
         envelope are where the cutter circle would cross the blank again, away from the design contact zone.
     """
 

@@ -243,7 +243,8 @@ class UniversalGenerator:
         """Generated flank points at blade parameter ``u`` (mm) and cradle angle ``psi_c`` (rad), broadcast.
 
         The cutter angle solves the equation of meshing on the branch nearest ``theta_ref`` (rad; default: toward
-        where the nominal cutter circle crosses the root line far from the machine centre). Raises
+        where the nominal cutter circle crosses the member's root line, displaced by the blank offset, far from the
+        machine centre). Raises
         ``GeometryError`` where the cutter does not generate (no root), or on a Formate setting.
         """
         if not self.settings.generated:

@@ -97,7 +97,8 @@ def hypoid_easeoff(pinion, gear, kinematics, *, n_face: int = 15, n_profile: int
     Returns
     -------
     EaseOff
-        ``branch`` is 0 (the root nearest the phased mean contact).
+        ``branch`` is 0 (the root nearest the phased mean contact); ``gear_u, gear_v`` are the wheel surface's own
+        parameters (cutter angle phi and cradle angle psi_c, rad, for a ``GeneratedSurface``).
     """
     from .easeoff import EaseOff
     from .flank_access import FlankAccess, flank_access, normal_line_distance, tooth_grid
@@ -115,8 +116,8 @@ def hypoid_easeoff(pinion, gear, kinematics, *, n_face: int = 15, n_profile: int
         r, nn, _ = conjugate_pinion_points(g, n, kinematics)
         return r, nn
 
-    grid = gear.flank.grid(9, 5, curvature=False)
-    conj = FlankAccess(conj_surface, (grid.u.ravel(), grid.psi_c.ravel()))
+    grid = gear.flank.grid(9, 5, curvature=False)         # start samples in the surface's (phi, psi_c) chart
+    conj = FlankAccess(conj_surface, (gear.cutter_angle(grid.theta, grid.psi_c).ravel(), grid.psi_c.ravel()))
     C, _, _, _ = conj.locate(ax_all[-1:], rad_all[-1:])
     ang = float(np.angle(np.exp(1j * (np.arctan2(C[-1, 1], C[-1, 0]) - np.arctan2(P[-1, 1], P[-1, 0])))))
     back = rot_z(-ang)

@@ -101,9 +101,10 @@ def test_synthesized_tca_matches_brute_force(synthesized):
     _, syn, c1, c2, res = synthesized[Side.CONCAVE]
     kin = syn.kinematics
 
-    def box(surface):
+    def box(surface):       # the (phi, psi_c) box of the flank's own grid (cutter angle, cradle angle), widened
         g = surface.flank.grid(31, 15, curvature=False)
-        lo, hi = np.array([g.u.min(), g.psi_c.min()]), np.array([g.u.max(), g.psi_c.max()])
+        phi = surface.cutter_angle(g.theta, g.psi_c)
+        lo, hi = np.array([phi.min(), g.psi_c.min()]), np.array([phi.max(), g.psi_c.max()])
         return np.stack([lo - 0.02 * (hi - lo), hi + 0.02 * (hi - lo)], 1)
 
     o = Oracle(c1, c2, box(c1), box(c2), kin.z1, kin.z2, kin.axes())
