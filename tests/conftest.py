@@ -1,4 +1,8 @@
 import os
+import sys
+
+# shared test data of several folders (tests/_hypoid_sample2.py) importable under --import-mode=importlib
+sys.path.insert(0, os.path.dirname(__file__))
 
 # small dense solves are far slower with threaded BLAS on 2 cores (LTCA); set before numpy is imported
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")

@@ -27,10 +27,9 @@ from typer.testing import CliRunner
 from spiralbevel.cli import app
 from spiralbevel.design.blank import BlankInput, compute_blank
 from spiralbevel.design.blank_hypoid import hypoid_pitch_cone
+from _hypoid_sample2 import SAMPLE2
 
 R = math.radians
-SAMPLE2 = dict(z1=13, z2=42, b=30.0, beta_m=R(50.0), rc0=63.5, de2=170.0, a=15.0, f_alim=1.0, c_ham=0.35, k_d=2.0,
-               k_c=0.125, k_t=0.1, jet=0.2, taper="given", theta_a2=R(1.0), theta_f2=R(4.0))
 # ISO 23509 Annex F.3 Sample 2, published (subset): lengths mm, angles deg
 PUBLISHED_LENGTHS = dict(Rm1=73.519, Rm2=76.337, dm1=53.383, dm2=141.877, ap=15.075, Re2=91.468, Ri2=61.468,
                          mmn=2.640, hmw=5.280, c=0.660, ham1=3.432, hfm1=2.508, ham2=1.848, hfm2=4.092)

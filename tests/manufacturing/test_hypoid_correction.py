@@ -15,10 +15,9 @@ from spiralbevel.manufacturing.correction import apply_changes, correct_settings
 from spiralbevel.manufacturing.measurement import measure_deviation, measurement_grid
 from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks
 from spiralbevel.meshing.synthesis.hypoid_local import synthesize_hypoid_pinion
+from _hypoid_sample2 import SAMPLE2
 
 R = math.radians
-SAMPLE2 = dict(z1=13, z2=42, b=30.0, beta_m=R(50.0), rc0=63.5, de2=170.0, a=15.0, f_alim=1.0, c_ham=0.35, k_d=2.0,
-               k_c=0.125, k_t=0.1, jet=0.2, taper="given", theta_a2=R(1.0), theta_f2=R(4.0))
 TRUE = {"radial_setting": 0.05, "cradle_angle": R(0.01), "blank_offset": -0.03}
 
 

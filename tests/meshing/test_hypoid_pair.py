@@ -21,10 +21,9 @@ from spiralbevel.machine.default_cutter import default_cutter, design_pressure_a
 from spiralbevel.machine.universal import UniversalGenerator, UniversalSettings
 from spiralbevel.meshing.hypoid_kinematics import HypoidPairKinematics
 from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks, pitch_point
+from _hypoid_sample2 import SAMPLE2
 
 R = math.radians
-SAMPLE2 = dict(z1=13, z2=42, b=30.0, beta_m=R(50.0), rc0=63.5, de2=170.0, a=15.0, f_alim=1.0, c_ham=0.35, k_d=2.0,
-               k_c=0.125, k_t=0.1, jet=0.2, taper="given", theta_a2=R(1.0), theta_f2=R(4.0))
 # the solver stops at 1e-7 rad on the angles; the mean point is located to ~1e-10 mm
 ANGLE_TOL = 2e-7
 
