@@ -2,6 +2,8 @@
 ``_core.jets``) against the numpy closed form ``_core.generation_blade.blade_jet``, and TCA of the face-milled pair
 with and without it."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 from _meshing_helpers import seed001_synthesized_pair
@@ -57,17 +59,25 @@ def _compare(S, u, S0, u0, scale):
 def seed001_flanks():
     b = seed001_blank()
     st = seed001_settings()
-    return [generate_flank(*st[key], b, *key) for key in st]
+    out = []
+    for key, (cutter, settings) in st.items():
+        out.append(generate_flank(cutter, settings, b, *key))
+        # the same flank cut with circular-arc blades (profile radius 400 mm through the blade point 3 mm deep)
+        arc = dataclasses.replace(cutter, profile_radius=400.0, profile_ref=3.0)
+        out.append(generate_flank(arc, settings, b, *key))
+    return out
 
 
 def test_compiled_jet_matches_numpy_on_seed001_flanks(seed001_flanks):
-    """Both members (left-hand gear, right-hand pinion), every seed 001 setting, two phasing turns, 500 random
-    (phi, psi_c) each, through ``GeneratedSurface`` (the public path TCA and ``derivatives`` use)."""
-    hands = set()
+    """Both members (left-hand gear, right-hand pinion), seed 001 straight blades and the same flanks cut with arc
+    blades, two phasing turns, 500 random (phi, psi_c) each, through ``GeneratedSurface`` (the public path TCA and
+    ``derivatives`` use)."""
+    hands, arcs = set(), 0
     rng = np.random.default_rng(13)
     for fl in seed001_flanks:
         gen = fl.generator
         hands.add(gen.hand)
+        arcs += np.isfinite(gen.cp["rp"])
         for rot in (0.0, 2.1):
             s = GeneratedSurface(fl, rotation=rot)
             q = s.reference_params + rng.uniform(-0.3, 0.3, size=(500, 2))
@@ -79,7 +89,7 @@ def test_compiled_jet_matches_numpy_on_seed001_flanks(seed001_flanks):
             kind, prm = s.jet
             ref = _gbj.parameters(gen.cp, gen.mp, gen.hand is Hand.RIGHT, rot)
             assert kind == _jets.GENERATED and np.array_equal(prm, ref, equal_nan=True)
-    assert hands == {Hand.LEFT, Hand.RIGHT}
+    assert hands == {Hand.LEFT, Hand.RIGHT} and arcs == 2
 
 
 def _machine_cases():
