@@ -1,10 +1,11 @@
 """Face-milled generated flanks as TCA contact surfaces (the ``ContactSurface`` protocol of ``contact_surface.py``).
 
-:class:`GeneratedSurface`: parameters (phi, psi_c), the absolute cutter angle and the cradle angle of generation
-(rad); the blade parameter u that satisfies the equation of meshing of generation is solved in closed form (straight
-blade; Newton for an arc blade, ``_core.generation_blade``). This chart is regular where the (u, psi_c) chart of
-:class:`GeneratedSurfaceUPsi` folds (the two cutter angles of the equation of meshing merge inside the face at low
-spiral angles). The flank may be turned about the member axis by ``rotation`` (rad) to phase it in its member frame.
+:class:`GeneratedSurface`: parameters (phi, psi_c), the absolute cutter angle and the cradle angle of generation (rad);
+the blade parameter u that satisfies the equation of meshing of generation is solved in closed form (straight blade;
+Newton for an arc blade), compiled with its derivatives in ``_core.generation_blade_jet`` (the jet TCA runs in its
+compiled Newton; ``_core.generation_blade`` is its numpy reference form). This chart is regular where the (u, psi_c)
+chart of :class:`GeneratedSurfaceUPsi` folds (the two cutter angles of the equation of meshing merge inside the face at
+low spiral angles). The flank may be turned about the member axis by ``rotation`` (rad) to phase it in its member frame.
 The domain is the blade (u >= u_j); the fillet below it is the "fillet" boundary of edge contact.
 """
 
@@ -68,12 +69,12 @@ class GeneratedSurface:
         """Parameter vector of :mod:`spiralbevel._core.generation_blade_jet`, rebuilt when the generator's parameter
         dicts are replaced (solvers that vary a setting swap ``generator.mp``)."""
         gen = self.flank.generator
-        key = (id(gen.cp), id(gen.mp))
-        if getattr(self, "_prm_key", None) != key:
+        src = getattr(self, "_prm_src", None)
+        if src is None or src[0] is not gen.cp or src[1] is not gen.mp:
             from .._core import generation_blade_jet as _gbj  # numba stays off the import path of the CLI
 
             self._prm_cache = _gbj.parameters(gen.cp, gen.mp, gen.hand is Hand.RIGHT, self.rotation)
-            self._prm_key = key
+            self._prm_src = (gen.cp, gen.mp)  # held, so that a replaced dict is never mistaken for this one
         return self._prm_cache
 
     def _jet(self, params):
