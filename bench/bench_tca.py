@@ -2,8 +2,8 @@
 per-position scipy.optimize.fsolve of the same contact equations, measured in the same run, on one core.
 
 Run:  python bench/bench_tca.py [--quick]
-Targets: under 50 ms (met); 1 ms for the face-milled pair (not met: the Newton iterations are compiled, the edge-contact
-stage and the generated-flank jet are still numpy).
+Targets: under 50 ms (met); 1 ms for the face-milled pair (not met: the Newton iterations and the surface jets of both
+flank kinds are compiled; the edge-contact stage and the exact transfer points are still numpy).
 
 Cases: the crowned log-spiral pair (point contact), the exactly conjugate log-spiral pair (line contact) and the
 seed 001 face-milled pair with the locally synthesized pinion (drive side, as the job runs it: ``phased_for_pair``).

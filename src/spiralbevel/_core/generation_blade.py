@@ -140,7 +140,9 @@ def blade_jet(phi, psi, cp, mp):
     Implicit differentiation of f(u, phi, psi_c) = 0: u_phi = -f_phi / f_u, u_psi = -f_psi / f_u; the total
     derivatives are D_phi = d_phi + u_phi d_u and D_psi = d_psi + u_psi d_u with the partials d_u r = t_h (the
     meridian tangent, u being the meridian's arc length), d_phi r = rho k x e(phi), d_psi r = d(C - A)/d psi_c, and
-    the work rotation psi_i(psi_c) as in ``generation_jet``.
+    the work rotation psi_i(psi_c) as in ``generation_jet``. The compiled per-point form that TCA and
+    ``GeneratedSurface`` run is :mod:`spiralbevel._core.generation_blade_jet`; this array form is its reference
+    (``tests/meshing/test_generated_jet.py``) and serves per-system offset laws.
     """
     phi, psi = np.broadcast_arrays(np.asarray(phi, float), np.asarray(psi, float))
     shape = phi.shape

@@ -7,8 +7,10 @@ A surface plugs its compiled jet into TCA by exposing ``jet = (kind, prm)``: ``k
 Registered kinds:
 
 * :data:`LOGSPIRAL` (0): the log-spiral flank, :mod:`spiralbevel._core.logspiral_jet`.
+* :data:`GENERATED` (1): the face-milled generated flank in the (phi, psi_c) chart,
+  :mod:`spiralbevel._core.generation_blade_jet`.
 
-Adding a kind (e.g. the face-milled generated flank) is a new branch in :func:`surface_jet` and a ``jet`` property on
+Adding a kind is a new branch in :func:`surface_jet` and a ``jet`` property on
 the surface class; surfaces without a compiled jet are evaluated by numpy between the compiled Newton steps
 (:mod:`spiralbevel._core.tca_newton`). A dispatch on an integer (rather than passing compiled functions around) keeps
 every kernel cacheable on disk.
@@ -19,11 +21,13 @@ from __future__ import annotations
 import math
 
 from .jit import kernel
+from .generation_blade_jet import blade_jet_point
 from .logspiral_jet import logspiral_jet
 
-__all__ = ["LOGSPIRAL", "surface_jet"]
+__all__ = ["LOGSPIRAL", "GENERATED", "surface_jet"]
 
 LOGSPIRAL = 0
+GENERATED = 1
 
 
 @kernel
@@ -31,5 +35,7 @@ def surface_jet(kind, prm, q0, q1, out):
     """Jet of surface ``kind`` with parameters ``prm`` at (q0, q1) into ``out (3, 6)``; NaN for an unknown kind."""
     if kind == LOGSPIRAL:
         logspiral_jet(prm, q0, q1, out)
+    elif kind == GENERATED:
+        blade_jet_point(prm, q0, q1, out)
     else:
         out[:, :] = math.nan

@@ -1,10 +1,11 @@
 """Face-milled generated flanks as TCA contact surfaces (the ``ContactSurface`` protocol of ``contact_surface.py``).
 
-:class:`GeneratedSurface`: parameters (phi, psi_c), the absolute cutter angle and the cradle angle of generation
-(rad); the blade parameter u that satisfies the equation of meshing of generation is solved in closed form (straight
-blade; Newton for an arc blade, ``_core.generation_blade``). This chart is regular where the (u, psi_c) chart of
-:class:`GeneratedSurfaceUPsi` folds (the two cutter angles of the equation of meshing merge inside the face at low
-spiral angles). The flank may be turned about the member axis by ``rotation`` (rad) to phase it in its member frame.
+:class:`GeneratedSurface`: parameters (phi, psi_c), the absolute cutter angle and the cradle angle of generation (rad);
+the blade parameter u that satisfies the equation of meshing of generation is solved in closed form (straight blade;
+Newton for an arc blade), compiled with its derivatives in ``_core.generation_blade_jet`` (the jet TCA runs in its
+compiled Newton; ``_core.generation_blade`` is its numpy reference form). This chart is regular where the (u, psi_c)
+chart of :class:`GeneratedSurfaceUPsi` folds (the two cutter angles of the equation of meshing merge inside the face at
+low spiral angles). The flank may be turned about the member axis by ``rotation`` (rad) to phase it in its member frame.
 The domain is the blade (u >= u_j); the fillet below it is the "fillet" boundary of edge contact.
 """
 
@@ -57,26 +58,58 @@ class GeneratedSurface:
         """The phasing turn after the mirror image y -> -y of a right-hand member (``Generator._mirror``)."""
         return self._R * np.array([1.0, -1.0, 1.0]) if self.flank.generator.hand is Hand.RIGHT else self._R
 
-    def _jet(self, params):
-        params = np.asarray(params, float)
+    @property
+    def jet(self):
+        """``(kind, prm)`` of the compiled jet (:mod:`spiralbevel._core.jets`, kind ``GENERATED``) that compiled TCA
+        evaluates, or None for a per-system offset law (arrays in the machine parameters)."""
+        prm = self._prm()
+        return None if prm is None else (1, prm)
+
+    def _prm(self):
+        """Parameter vector of :mod:`spiralbevel._core.generation_blade_jet`, rebuilt when the generator's parameter
+        dicts are replaced (solvers that vary a setting swap ``generator.mp``)."""
         gen = self.flank.generator
-        with np.errstate(invalid="ignore", divide="ignore"):
-            S, u, _ = blade_jet(params[..., 0], params[..., 1], gen.cp, gen.mp)
-        off = ~np.isfinite(u)
-        return S, u, off
+        src = getattr(self, "_prm_src", None)
+        if src is None or src[0] is not gen.cp or src[1] is not gen.mp:
+            from .._core import generation_blade_jet as _gbj  # numba stays off the import path of the CLI
+
+            self._prm_cache = _gbj.parameters(gen.cp, gen.mp, gen.hand is Hand.RIGHT, self.rotation)
+            self._prm_src = (gen.cp, gen.mp)  # held, so that a replaced dict is never mistaken for this one
+        return self._prm_cache
+
+    def _jet(self, params):
+        """Stacked jet (..., 3, 6) in the member's own frame (mirror and phasing turn applied), blade parameter u
+        (...) mm and the mask of the chart's singular set (u not finite, jet NaN there).
+
+        Compiled (:func:`spiralbevel._core.generation_blade_jet.jet_batch`, the kernel TCA runs); a per-system offset
+        law (no compiled jet) goes through the numpy form :func:`spiralbevel._core.generation_blade.blade_jet`."""
+        params = np.asarray(params, float)
+        prm = self._prm()
+        if prm is None:
+            gen = self.flank.generator
+            with np.errstate(invalid="ignore", divide="ignore"):
+                S, u, _ = blade_jet(params[..., 0], params[..., 1], gen.cp, gen.mp)
+            off = ~np.isfinite(u)
+            S = self._Rm @ S
+            return np.where(off[..., None, None], np.nan, S), u, off
+        from .._core import generation_blade_jet as _gbj
+
+        q = np.ascontiguousarray(params.reshape(-1, 2))
+        out, u = np.empty((q.shape[0], 3, 6)), np.empty(q.shape[0])
+        _gbj.jet_batch(prm, q, out, u)
+        shape = params.shape[:-1]
+        u = u.reshape(shape)
+        return out.reshape(shape + (3, 6)), u, ~np.isfinite(u)
 
     def evaluate(self, params):
         """Points (..., 3) mm and outward normals (..., 3) at ``params (..., 2) = (phi, psi_c)``; NaN where the chart
         is singular, so that solvers see "no surface there" and step back."""
-        S, _, off = self._jet(params)
-        r, n = S[..., 0] @ self._Rm.T, S[..., 1] @ self._Rm.T
-        if np.any(off):
-            r, n = np.where(off[..., None], np.nan, r), np.where(off[..., None], np.nan, n)
-        return r, n
+        S, _, _ = self._jet(params)
+        return S[..., 0], S[..., 1]
 
     def derivatives(self, params):
-        """Points, outward normals and their derivatives w.r.t. (phi, psi_c) in closed form
-        (:func:`spiralbevel._core.generation_blade.blade_jet`), NaN where the chart is singular.
+        """Points, outward normals and their derivatives w.r.t. (phi, psi_c) in closed form (the compiled jet,
+        :mod:`spiralbevel._core.generation_blade_jet`), NaN where the chart is singular.
 
         Returns
         -------
@@ -87,10 +120,7 @@ class GeneratedSurface:
         dn : (..., 3, 2) float
             Columns dn/dphi and dn/dpsi_c (1/rad).
         """
-        S, _, off = self._jet(params)
-        S = self._Rm @ S
-        if np.any(off):
-            S = np.where(off[..., None, None], np.nan, S)
+        S, _, _ = self._jet(params)
         return S[..., 0], S[..., 1], S[..., 2:4], S[..., 4:6]
 
     def boundary_margins(self, params):

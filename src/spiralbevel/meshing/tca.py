@@ -17,13 +17,13 @@ Algorithm (all numpy, batched):
 3. all positions x pairs at once, started from cubic Hermite interpolation of the continuation nodes;
 4. domains, TE, the pair in contact, transfer points, contact ellipses.
 
-Speed (bench/bench_tca.py): the Newton iterations are compiled (:mod:`spiralbevel._core.tca_newton`: LU steps where
-the system is provably regular, the minimum-norm SVD step only on a contact line; flanks with a compiled jet, such as
-the log-spiral flank, are evaluated inside the compiled loop), the path tangents
-come from the Jacobians of the last Newton iterations, one continuation level (+-T/2) feeds a quintic predictor for
-the outer positions, positions beyond a node the continuation could not reach are not solved, and systems that stop
-converging are dropped at the first iteration that does not halve their residual (continuation nodes after
-two); the generated flanks give analytic derivatives (:mod:`spiralbevel._core.generation_jet`).
+Speed (bench/bench_tca.py): the Newton iterations are compiled (:mod:`spiralbevel._core.tca_newton`: LU steps where the
+system is provably regular, the minimum-norm SVD step only on a contact line; flanks with a compiled jet, the log-spiral
+and the face-milled generated flank, are evaluated inside the compiled loop), the path tangents come from the Jacobians
+of the last Newton iterations, one continuation level (+-T/2) feeds a quintic predictor for the outer positions,
+positions beyond a node the continuation could not reach are not solved, and systems that stop converging are dropped at
+the first iteration that does not halve their residual (continuation nodes after two); the generated flanks give
+analytic derivatives (:mod:`spiralbevel._core.generation_blade_jet`).
 """
 
 from __future__ import annotations
