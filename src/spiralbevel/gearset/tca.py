@@ -32,15 +32,18 @@ def run_pair_tca(blank, setups, grids, n_positions: int = 41):
     return results, section, outlines
 
 
-def side_tca(blank, setups, name: str, n_positions: int = 41, misalignment=None, grids=None):
+def side_tca(blank, setups, name: str, n_positions: int = 41, misalignment=None, grids=None, pair=None):
     """TCA of one side (``"drive"`` or ``"coast"``) of a face-milled pair.
 
     Returns (TCAResult or None, report section, (pinion outline, gear outline) in the TCA's frames or None). The
     outlines are the flank grids (``grids``, {(member, side): FlankGeometry}) turned as the phased flanks; without
-    ``grids`` they are None. A failed solve gives (None, section with ``error``, None).
+    ``grids`` they are None. A failed solve gives (None, section with ``error``, None). ``pair`` (a
+    :class:`~spiralbevel.meshing.pair.MeshingPair`) replaces the spiral bevel assembly of the two flanks, e.g. the
+    hypoid pair of a synthesis with its offset kinematics (``gearset.hypoid.hypoid_pair``).
     """
     s1, s2 = SIDES[name]
-    pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
+    if pair is None:
+        pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
     try:
         res = solve_tca(pair.pinion, pair.gear, pair.kinematics, misalignment=misalignment, n_positions=n_positions,
                         start=pair.start)

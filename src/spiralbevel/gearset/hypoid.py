@@ -1,6 +1,7 @@
 """Face-milled hypoid designs in the job: the four flanks of a hypoid pair (basic settings at each member's mean cone
-distance, local synthesis of the pinion in the crossed-axes frame). Used by ``spiralbevel machine``; the other
-commands still stop on a hypoid (``job.blank.require_no_offset``)."""
+distance, local synthesis of the pinion in the crossed-axes frame), and the hypoid pair of one side phased for meshing
+with the offset kinematics. Used by :class:`~spiralbevel.gearset.GearSet` (``spiralbevel run``, ``machine``); the
+commands that do not handle the offset yet stop on a hypoid (``gearset.blank.require_no_offset``)."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ from ..meshing.tca_result import ARCSEC
 from .facemilled import (DEFAULT_PATH_DIRECTIONS, MEMBERS, PAIR_SIDES, SIDES, FlankSetup, _default_cutter, _FREE,
                          _given_cutter, _given_settings, _in_design_file, effective_synthesis)
 
-__all__ = ["setup_hypoid_flanks"]
+__all__ = ["hypoid_pair", "setup_hypoid_flanks"]
 
 #: positions of the TCA that checks the bearing of a synthesized hypoid pair over one mesh cycle
 _CHECK_POSITIONS = 41
@@ -126,3 +127,16 @@ def setup_hypoid_flanks(spec, blank, with_synthesis: bool = False):
     new, synth = _synthesize(spec, blank, out)
     out.update(new)
     return (out, synth) if with_synthesis else out
+
+
+def hypoid_pair(synthesis):
+    """The synthesized hypoid pair of one side phased for meshing: a
+    :class:`~spiralbevel.meshing.pair.MeshingPair` whose kinematics are the offset
+    :class:`~spiralbevel.meshing.hypoid_kinematics.HypoidPairKinematics` and whose flanks meet at the pitch point M of
+    the synthesis at zero roll (``synthesis``: a :class:`~spiralbevel.meshing.synthesis.hypoid_local.HypoidSynthesis`).
+    """
+    from ..meshing.pair import MeshingPair
+    from ..meshing.synthesis.hypoid_local import tca_surfaces
+
+    c1, c2, start = tca_surfaces(synthesis)
+    return MeshingPair(c1, c2, synthesis.kinematics, start)

@@ -1,0 +1,90 @@
+"""The hypoid branch of the main job (a face-milled design with ``gear_set.hypoid_offset`` != 0): the ISO 23509
+Method 1 pair developed by the default (or given) hypoid local synthesis, its machine settings, design against
+achieved mean-point angles, and the TCA of both sides with the offset kinematics. The analyses that do not take the
+offset yet are reported as not available (``hypoid.not_available``), not as failures."""
+
+from __future__ import annotations
+
+from . import facemilled as fm
+from . import outputs
+from .partial import mark_failed
+from .run_facemilled import _tca_checks
+from .units import synthesis_units
+
+#: status of an analysis the hypoid branch does not run yet
+NOT_AVAILABLE = "not available for hypoid pairs yet"
+
+#: (report section, what it is, why it is left out) of the analyses not run on a hypoid pair
+_LEFT_OUT = (
+    ("misalignment_sensitivity", "misalignment sensitivity of the TCA",
+     "the study moves the contact in the spiral bevel pair's outline frame; the hypoid pair's is not wired in"),
+    ("ltca", "loaded TCA (FE compliance, load sharing)",
+     "the FE tooth model and the load sharing assemble the pair with the intersecting-axes kinematics"),
+    ("easeoff", "ease-off maps", "the ease-off of the job compares against the intersecting-axes conjugate"),
+    ("measurement", "measurement grids (CMM)", "the grids' flank frames assume the intersecting-axes pair"),
+    ("cad", "STL / STEP of the teeth", "the whole-tooth builder (fillets, tooth rotation) is not checked for "
+                                      "hypoid members"),
+)
+
+
+def hypoid_steps(spec) -> int:
+    """Progress steps of :func:`run_hypoid`."""
+    return 3 + int(spec.output.plots)
+
+
+def run_hypoid(gs, out, steps, report, summary):
+    """Develop the hypoid pair of the gear set ``gs`` and write its report sections (and TCA plots) into ``out``."""
+    spec, blank = gs.design, gs.blank
+    with steps.step("hypoid cutters and machine settings (local synthesis)"):
+        setups, synth = gs.setups, gs.synthesis
+        report["synthesis"] = {name: synthesis_units(r.summary()) for name, r in synth.items()}
+    with steps.step("generated flanks: design against achieved"):
+        flanks, machines = fm.flank_report(setups, blank)
+        report["flanks"] = flanks
+        report["machine_settings"] = machines
+    with steps.step("tooth contact analysis (offset kinematics)"):
+        from .tca import side_tca
+
+        grids = gs.grids()
+        report["tca"], results, outlines = {}, {}, {}
+        for name in ("drive", "coast"):
+            pair = gs.pair(name) if name in synth else None
+            if pair is None:
+                s1, s2 = fm.PAIR_SIDES[name]
+                report["tca"][name] = {"pinion_side": s1.value, "gear_side": s2.value,
+                                       "error": f"the {name} side's pinion flank was not synthesized "
+                                                "(synthesis.sides): a hypoid pair meshes through its synthesis"}
+                res, outline = None, None
+            else:
+                res, report["tca"][name], outline = side_tca(blank, setups, name, n_positions=spec.tca.positions,
+                                                             grids=grids, pair=pair)
+            mark_failed(summary.partial, report["tca"][name], f"TCA, {name} side")
+            _tca_checks(report, name, res, synth, blank.z1)
+            results[name] = res
+            if outline is not None:
+                outlines[name] = outline
+    missing = [{"analysis": what, "section": key, "status": NOT_AVAILABLE, "reason": why}
+               for key, what, why in _LEFT_OUT]
+    report["tca"]["misalignment_sensitivity"] = {"status": NOT_AVAILABLE, "reason": _LEFT_OUT[0][2]}
+    report["hypoid"] = {"offset_mm": float(blank.a), "not_available": missing}
+    if spec.output.plots:
+        with steps.step("plots"):
+            for name, res in results.items():
+                if res is not None:
+                    fig = res.plot(outline1=outlines[name][0], outline2=outlines[name][1])
+                    fig.suptitle(f"TCA, {name} side: {spec.title}")
+                    fig.tight_layout(rect=(0, 0, 1, 0.93))
+                    summary.files.append(outputs.save_figure(fig, out / f"tca_{name}.png"))
+    for name in ("drive", "coast"):
+        sec = report["tca"][name]
+        summary.highlights.append(f"TCA {name}: " + (sec["error"] if "error" in sec else
+                                  f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec, "
+                                  f"{len(sec['edge_contact_positions_deg'])} edge-contact positions"))
+    for m in fm.MEMBERS:
+        for s in fm.SIDES:
+            f = flanks[m.value][s.value]
+            summary.highlights.append(
+                f"{m.value} {s.value}: mean spiral angle {f['spiral_angle_deg']:.4f} deg, "
+                f"normal pressure angle {f['pressure_angle_deg']:.4f} deg ({machines[m.value][s.value]['source']})")
+    summary.highlights.append(f"hypoid pair (offset {float(blank.a):g} mm): " + "; ".join(
+        f"{w['analysis']} {NOT_AVAILABLE}" for w in missing))
