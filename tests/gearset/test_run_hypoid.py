@@ -82,3 +82,15 @@ def test_analyses_not_taking_the_offset_are_reported_not_available(report):
     assert report["failed_analyses"] == []
     for key in ("ltca", "easeoff", "measurement", "cad"):
         assert key not in report
+
+
+def test_rigid_loaded_tca_at_the_approach_torque(report):
+    lt = report["hypoid"]["rigid_ltca"]
+    assert lt["side"] == "drive" and lt["positions"] == report["tca"]["drive"]["positions"]
+    # no [ltca] torque in the example: the stated torque is the one of the 0.00635 mm approach at the mean contact
+    assert lt["torque_N_m"] == lt["torque_for_approach_N_m"] > 0
+    # under load the teeth approach: the loaded TE lies beyond the unloaded one (the torque balance about the hypoid
+    # wheel axis and the unloaded limit are checked in tests/meshing/ltca/test_hypoid_ltca.py)
+    assert lt["loaded_transmission_error_largest_magnitude_arcsec"] > \
+        lt["unloaded_transmission_error_largest_magnitude_arcsec"]
+    assert 0 < lt["max_contact_pressure_N_per_mm2"] < 5000.0

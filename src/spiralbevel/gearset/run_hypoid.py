@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from . import facemilled as fm
 from . import outputs
-from .partial import mark_failed
+from .partial import attempt, mark_failed
 from .run_facemilled import _tca_checks
 from .units import synthesis_units
 
@@ -18,8 +18,9 @@ NOT_AVAILABLE = "not available for hypoid pairs yet"
 _LEFT_OUT = (
     ("misalignment_sensitivity", "misalignment sensitivity of the TCA",
      "the study moves the contact in the spiral bevel pair's outline frame; the hypoid pair's is not wired in"),
-    ("ltca", "loaded TCA (FE compliance, load sharing)",
-     "the FE tooth model and the load sharing assemble the pair with the intersecting-axes kinematics"),
+    ("ltca", "loaded TCA with FE tooth compliance",
+     "the FE tooth segment is built with the intersecting-axes assembly; the loaded TCA with rigid teeth (contact "
+     "flattening only) is in hypoid.rigid_ltca"),
     ("easeoff", "ease-off maps", "the ease-off of the job compares against the intersecting-axes conjugate"),
     ("measurement", "measurement grids (CMM)", "the grids' flank frames assume the intersecting-axes pair"),
     ("cad", "STL / STEP of the teeth", "the whole-tooth builder (fillets, tooth rotation) is not checked for "
@@ -28,8 +29,8 @@ _LEFT_OUT = (
 
 
 def hypoid_steps(spec) -> int:
-    """Progress steps of :func:`run_hypoid`."""
-    return 3 + int(spec.output.plots)
+    """Progress steps of :func:`run_hypoid` (the rigid loaded TCA counted: it runs when the drive TCA does)."""
+    return 4 + int(spec.output.plots)
 
 
 def run_hypoid(gs, out, steps, report, summary):
@@ -46,9 +47,9 @@ def run_hypoid(gs, out, steps, report, summary):
         from .tca import side_tca
 
         grids = gs.grids()
-        report["tca"], results, outlines = {}, {}, {}
+        report["tca"], results, outlines, pairs = {}, {}, {}, {}
         for name in ("drive", "coast"):
-            pair = gs.pair(name) if name in synth else None
+            pair = pairs[name] = gs.pair(name) if name in synth else None
             if pair is None:
                 s1, s2 = fm.PAIR_SIDES[name]
                 report["tca"][name] = {"pinion_side": s1.value, "gear_side": s2.value,
@@ -67,6 +68,16 @@ def run_hypoid(gs, out, steps, report, summary):
                for key, what, why in _LEFT_OUT]
     report["tca"]["misalignment_sensitivity"] = {"status": NOT_AVAILABLE, "reason": _LEFT_OUT[0][2]}
     report["hypoid"] = {"offset_mm": float(blank.a), "not_available": missing}
+    if results.get("drive") is not None:
+        with steps.step("loaded TCA, rigid teeth (drive side)"):
+            sec, failed = attempt(summary.partial, "loaded TCA with rigid teeth, drive side", rigid_ltca_section,
+                                  pairs["drive"], results["drive"], spec)
+            report["hypoid"]["rigid_ltca"] = failed or sec
+            if failed is None:
+                summary.highlights.append(
+                    f"loaded TCA drive, rigid teeth: torque {sec['torque_N_m']:.2f} N m (approach 0.00635 mm), "
+                    f"loaded TE {sec['loaded_transmission_error_largest_magnitude_arcsec']:.3f} arcsec, max pressure "
+                    f"{sec['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
     if spec.output.plots:
         with steps.step("plots"):
             for name, res in results.items():
@@ -88,3 +99,37 @@ def run_hypoid(gs, out, steps, report, summary):
                 f"normal pressure angle {f['pressure_angle_deg']:.4f} deg ({machines[m.value][s.value]['source']})")
     summary.highlights.append(f"hypoid pair (offset {float(blank.a):g} mm): " + "; ".join(
         f"{w['analysis']} {NOT_AVAILABLE}" for w in missing))
+
+
+def rigid_ltca_section(pair, tca, spec) -> dict:
+    """Loaded TCA of one side of a hypoid pair with rigid teeth (contact flattening only, no FE compliance), in the
+    crossed-axes assembly of ``pair`` (:class:`~spiralbevel.meshing.pair.MeshingPair`) over the positions of its
+    unloaded ``tca``. The gear torque is the design's ``[ltca] torque`` when it is a number (N m), else the torque at
+    which the approach at the mean contact point is 0.00635 mm. Returns the report entry (N m, arcsec, N/mm^2)."""
+    import numpy as np
+
+    from ..meshing.ltca import ltca_model
+
+    model = ltca_model(pair.pinion, pair.gear, pair.kinematics, tca, rigid=True, grid=_RIGID_GRID)
+    probe = model.run(_PROBE_TORQUE_NMM)
+    given = spec.ltca.torque if spec.ltca is not None and not isinstance(spec.ltca.torque, str) else None
+    torque = 1000.0 * float(given) if given is not None else float(probe.approach_torque)
+    res = model.run(torque, approach_target=None)
+    te = np.asarray(res.te_loaded, float)
+    return {
+        "model": "rigid teeth: contact flattening only, no FE tooth compliance",
+        "side": "drive", "positions": int(te.size),
+        "torque_N_m": torque / 1000.0, "torque_for_approach_N_m": float(probe.approach_torque) / 1000.0,
+        "torque_source": "[ltca] torque" if given is not None else "approach 0.00635 mm at the mean contact",
+        "loaded_transmission_error_largest_magnitude_arcsec": float(np.max(np.abs(te))),
+        "loaded_te_peak_to_peak_arcsec": float(np.ptp(te)),
+        "unloaded_transmission_error_largest_magnitude_arcsec": float(np.nanmax(np.abs(tca.te_arcsec))),
+        "max_contact_pressure_N_per_mm2": float(res.peak_pressure),
+        "pinion_rotation_deg": np.degrees(res.pinion_angles), "loaded_transmission_error_arcsec": te,
+    }
+
+
+#: potential contact points per pair (major x minor axis) of the rigid loaded TCA
+_RIGID_GRID = (15, 5)
+#: gear torque (N mm) of the probe run that finds the torque of the approach target
+_PROBE_TORQUE_NMM = 1e5
