@@ -94,3 +94,23 @@ def test_rigid_loaded_tca_at_the_approach_torque(report):
     assert lt["loaded_transmission_error_largest_magnitude_arcsec"] > \
         lt["unloaded_transmission_error_largest_magnitude_arcsec"]
     assert 0 < lt["max_contact_pressure_N_per_mm2"] < 5000.0
+
+
+def test_check_develops_the_hypoid_pair_and_other_commands_still_stop(tmp_path):
+    from spiralbevel.io.design_file import bundled_designs
+
+    runner = CliRunner()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = runner.invoke(app, ["check", "iso23509_sample2_hypoid"])
+    assert res.exit_code == 0 and "ok" in res.output, res.output
+    # a log-spiral design with an offset is not developed: it stops naming the key
+    text = bundled_designs()["iso23509_sample2_hypoid"].read_text().replace('kind = "face-milled"',
+                                                                              'kind = "log-spiral"')
+    f = tmp_path / "hypoid_logspiral.toml"
+    f.write_text(text)
+    for argv in (["check", str(f)], ["run", str(f), "-o", str(tmp_path / "out")]):
+        res = runner.invoke(app, argv)
+        assert res.exit_code == 2 and "gear_set.hypoid_offset" in " ".join(res.output.split()), res.output
+        assert "Traceback" not in res.output
+    assert not (tmp_path / "out").exists()
