@@ -301,7 +301,12 @@ class GearSet:
         from .results import EaseOff
 
         self._require("face-milled", "easeoff()")
-        self._no_hypoid("easeoff()")
+        if self.is_hypoid:
+            from .hypoid import hypoid_easeoff_maps
+
+            pairs = {name: self._hypoid_pair(name) for name in PAIR_SIDES if name in self.synthesis}
+            section, _, maps = hypoid_easeoff_maps(self.setups, pairs)
+            return EaseOff(section, maps)
         section, _, maps = easeoff_maps(self.blank, self.setups, None, False, return_maps=True)
         return EaseOff(section, maps)
 
@@ -311,7 +316,6 @@ class GearSet:
         from .results import MeasurementGrids
 
         self._require("face-milled", "measurement_grid()")
-        self._no_hypoid("measurement_grid()")
         return MeasurementGrids(measurement_grids(self.setups))
 
     def rate(self):

@@ -1,6 +1,7 @@
 """The hypoid branch of the main job (a face-milled design with ``gear_set.hypoid_offset`` != 0): the ISO 23509
 Method 1 pair developed by the default (or given) hypoid local synthesis, its machine settings, design against
-achieved mean-point angles, and the TCA of both sides with the offset kinematics. The analyses that do not take the
+achieved mean-point angles, the TCA of both sides with the offset kinematics, the loaded TCA of the drive side with
+rigid teeth, the ease-off against the hypoid conjugate and the CMM grids. The analyses that do not take the
 offset yet are reported as not available (``hypoid.not_available``), not as failures."""
 
 from __future__ import annotations
@@ -21,8 +22,6 @@ _LEFT_OUT = (
     ("ltca", "loaded TCA with FE tooth compliance",
      "the FE tooth segment is built with the intersecting-axes assembly; the loaded TCA with rigid teeth (contact "
      "flattening only) is in hypoid.rigid_ltca"),
-    ("easeoff", "ease-off maps", "the ease-off of the job compares against the intersecting-axes conjugate"),
-    ("measurement", "measurement grids (CMM)", "the grids' flank frames assume the intersecting-axes pair"),
     ("cad", "STL / STEP of the teeth", "the whole-tooth builder (fillets, tooth rotation) is not checked for "
                                       "hypoid members"),
 )
@@ -30,7 +29,7 @@ _LEFT_OUT = (
 
 def hypoid_steps(spec) -> int:
     """Progress steps of :func:`run_hypoid` (the rigid loaded TCA counted: it runs when the drive TCA does)."""
-    return 4 + int(spec.output.plots)
+    return 5 + int(spec.output.plots)
 
 
 def run_hypoid(gs, out, steps, report, summary):
@@ -64,6 +63,16 @@ def run_hypoid(gs, out, steps, report, summary):
             results[name] = res
             if outline is not None:
                 outlines[name] = outline
+    with steps.step("ease-off (hypoid conjugate) and measurement grids"):
+        from .hypoid import hypoid_easeoff_maps
+        from .inspection import measurement_files
+
+        report["easeoff"], files, _ = hypoid_easeoff_maps(setups, pairs, out, spec.output.plots)
+        summary.files += files
+        for name in ("drive", "coast"):
+            mark_failed(summary.partial, report["easeoff"][name], f"ease-off, {name} side")
+        report["measurement"], files = measurement_files(setups, out)
+        summary.files += files
     missing = [{"analysis": what, "section": key, "status": NOT_AVAILABLE, "reason": why}
                for key, what, why in _LEFT_OUT]
     report["tca"]["misalignment_sensitivity"] = {"status": NOT_AVAILABLE, "reason": _LEFT_OUT[0][2]}
