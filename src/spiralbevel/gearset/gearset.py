@@ -254,9 +254,9 @@ class GearSet:
         from .tca import misalignment_sensitivity
 
         self._require("face-milled", "sensitivity() (the log-spiral mismatch study runs from a [crowning] section)")
-        self._no_hypoid("sensitivity()")
         return Sensitivity(misalignment_sensitivity(self.blank, self.setups, _side_name(side),
-                                                    n_positions=positions or self.design.tca.positions))
+                                                    n_positions=positions or self.design.tca.positions,
+                                                    pair=self._hypoid_pair(side) if self.is_hypoid else None))
 
     def ltca(self, torque="approach", side: str | None = None, positions: int | None = None):
         """Loaded tooth contact analysis over one mesh cycle (:class:`LTCA`).

@@ -17,8 +17,6 @@ NOT_AVAILABLE = "not available for hypoid pairs yet"
 
 #: (report section, what it is, why it is left out) of the analyses not run on a hypoid pair
 _LEFT_OUT = (
-    ("misalignment_sensitivity", "misalignment sensitivity of the TCA",
-     "the study moves the contact in the spiral bevel pair's outline frame; the hypoid pair's is not wired in"),
     ("ltca", "loaded TCA with FE tooth compliance",
      "the FE tooth segment is built with the intersecting-axes assembly; the loaded TCA with rigid teeth (contact "
      "flattening only) is in hypoid.rigid_ltca"),
@@ -75,7 +73,19 @@ def run_hypoid(gs, out, steps, report, summary):
         summary.files += files
     missing = [{"analysis": what, "section": key, "status": NOT_AVAILABLE, "reason": why}
                for key, what, why in _LEFT_OUT]
-    report["tca"]["misalignment_sensitivity"] = {"status": NOT_AVAILABLE, "reason": _LEFT_OUT[0][2]}
+    if pairs.get("drive") is not None:
+        from .tca import SENSITIVITY, misalignment_sensitivity
+
+        sens, failed = attempt(summary.partial, "misalignment sensitivity", misalignment_sensitivity, blank, setups,
+                               "drive", n_positions=spec.tca.positions, pair=pairs["drive"])
+        report["tca"]["misalignment_sensitivity"] = failed or sens
+        if failed is None:
+            mark_failed(summary.partial, sens, "misalignment sensitivity, aligned")
+            for case in SENSITIVITY:
+                if isinstance(sens.get(case[0]), dict):
+                    mark_failed(summary.partial, sens[case[0]], f"misalignment sensitivity, {case[0]} case")
+    else:
+        report["tca"]["misalignment_sensitivity"] = {"side": "drive", "error": report["tca"]["drive"]["error"]}
     report["hypoid"] = {"offset_mm": float(blank.a), "not_available": missing}
     if results.get("drive") is not None:
         with steps.step("loaded TCA, rigid teeth (drive side)"):

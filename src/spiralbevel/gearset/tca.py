@@ -103,17 +103,20 @@ SENSITIVITY = (
 )
 
 
-def misalignment_sensitivity(blank, setups, side: str = "drive", n_positions: int = 41):
+def misalignment_sensitivity(blank, setups, side: str = "drive", n_positions: int = 41, pair=None):
     """TE level and contact-path shift of one side for each misalignment of :data:`SENSITIVITY`.
 
     The shift is that of the gear contact point at the mean position, in the pitch-generatrix coordinates of the
     gear's blank outline (``contact_R_mm``, ``contact_h_mm`` of the aligned pair): along the face (toward the heel
     > 0) and along the profile (toward the top > 0), mm. Returns a report section (``{"aligned": ..., name: {...}}``).
+    ``pair`` (a :class:`~spiralbevel.meshing.pair.MeshingPair`) replaces the spiral bevel assembly, e.g. the hypoid
+    pair with its offset kinematics (the misalignments then act on top of the offset).
     """
     from ..meshing.misalignment import Misalignment
 
     s1, s2 = SIDES[side]
-    pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
+    if pair is None:
+        pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
     c1, c2, kin, start = pair.pinion, pair.gear, pair.kinematics, pair.start
     outline = setups[(Member.GEAR, s2)].flank.outline
 
