@@ -300,7 +300,7 @@ def machine(design: Optional[Path] = typer.Argument(
         raise DesignError.single("flank.kind", spec.flank.kind, "'face-milled' for a machine summary", "-")
     blank = blank_from_design(spec)
     if blank.a != 0.0:   # a hypoid: basic settings at each member's mean cone distance, pinion by hypoid synthesis
-        from .job.hypoid import setup_hypoid_flanks
+        from .gearset.hypoid import setup_hypoid_flanks
 
         setups = setup_hypoid_flanks(spec, blank)
     else:

@@ -102,13 +102,13 @@ def require_no_offset(blank, command: str) -> None:
     Raises
     ------
     DesignError
-        Naming ``gear_set.hypoid_offset`` when a != 0: machine settings, generation and TCA take no offset yet.
+        Naming ``gear_set.hypoid_offset`` when a != 0: the command does not take the offset yet.
     """
     if blank.a != 0.0:
         raise DesignError.single(
             "gear_set.hypoid_offset", blank.a, f"a = 0 ({command} builds spiral bevel flanks only)", "mm",
-            "the hypoid dimension sheet (ISO 23509 Method 1) is computed: see 'spiralbevel blank'; generation of "
-            "hypoid flanks is not supported yet")
+            "the hypoid dimension sheet (ISO 23509 Method 1) is computed: see 'spiralbevel blank'; 'spiralbevel run' "
+            "and 'spiralbevel machine' develop the hypoid pair, this command does not take the offset yet")
 
 
 def _renamed(err: DesignError) -> DesignError:

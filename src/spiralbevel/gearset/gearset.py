@@ -127,7 +127,16 @@ class GearSet:
         from .facemilled import setup_flanks
 
         self._require("face-milled", "cutters, machine settings and generated flanks")
+        if self.is_hypoid:   # basic settings at each member's mean cone distance, pinion by hypoid local synthesis
+            from .hypoid import setup_hypoid_flanks
+
+            return setup_hypoid_flanks(self.design, self.blank, with_synthesis=True)
         return setup_flanks(self.design, self.blank, with_synthesis=True)
+
+    @property
+    def is_hypoid(self) -> bool:
+        """True for a hypoid pair (``gear_set.hypoid_offset`` != 0: ISO 23509 Method 1 blank, offset kinematics)."""
+        return float(self.blank.a) != 0.0
 
     @property
     def setups(self) -> dict:
@@ -169,6 +178,8 @@ class GearSet:
         from ..meshing.pair import meshing_pair
 
         s1, s2 = PAIR_SIDES[_side_name(side)]
+        if self.is_hypoid:
+            return self._hypoid_pair(side)
         return meshing_pair(self.setups[(Member.PINION, s1)].flank, self.setups[(Member.GEAR, s2)].flank, self.blank)
 
     def grids(self, n_face: int | None = None, n_profile: int | None = None) -> dict:
@@ -229,7 +240,8 @@ class GearSet:
         side = _side_name(side)
         n = positions or self.design.tca.positions
         res, section, outline = side_tca(self.blank, self.setups, _side_name(side), n_positions=n,
-                                         misalignment=mis, grids=self.grids())
+                                         misalignment=mis, grids=self.grids(),
+                                         pair=self._hypoid_pair(side) if self.is_hypoid else None)
         if mis is None:   # the developed-pair checks, as the main job reports them
             from .run_facemilled import tca_side_checks
 
@@ -243,7 +255,8 @@ class GearSet:
 
         self._require("face-milled", "sensitivity() (the log-spiral mismatch study runs from a [crowning] section)")
         return Sensitivity(misalignment_sensitivity(self.blank, self.setups, _side_name(side),
-                                                    n_positions=positions or self.design.tca.positions))
+                                                    n_positions=positions or self.design.tca.positions,
+                                                    pair=self._hypoid_pair(side) if self.is_hypoid else None))
 
     def ltca(self, torque="approach", side: str | None = None, positions: int | None = None):
         """Loaded tooth contact analysis over one mesh cycle (:class:`LTCA`).
@@ -270,6 +283,7 @@ class GearSet:
         from .results import LTCA
 
         self._require("face-milled", "ltca() (the loaded TCA of a log-spiral pair is not implemented)")
+        self._no_hypoid("ltca()")
         base = self.design.ltca or LTCASpec()
         upd = {"torque": torque}
         if side is not None:
@@ -287,6 +301,12 @@ class GearSet:
         from .results import EaseOff
 
         self._require("face-milled", "easeoff()")
+        if self.is_hypoid:
+            from .hypoid import hypoid_easeoff_maps
+
+            pairs = {name: self._hypoid_pair(name) for name in PAIR_SIDES if name in self.synthesis}
+            section, _, maps = hypoid_easeoff_maps(self.setups, pairs)
+            return EaseOff(section, maps)
         section, _, maps = easeoff_maps(self.blank, self.setups, None, False, return_maps=True)
         return EaseOff(section, maps)
 
@@ -334,6 +354,8 @@ class GearSet:
     def _cad_files(self, directory, fmt, whole_gear=True):
         from . import outputs
 
+        if self.kind == "face-milled":
+            self._no_hypoid(f"to_{fmt}()")
         out = Path(directory)
         out.mkdir(parents=True, exist_ok=True)
         tooth, teeth, cad = self._tooth_grids()
@@ -362,6 +384,24 @@ class GearSet:
             tooth[m] = ((cx.points, cx.normals), fm.rotate_grid(cc.points, cc.normals, rot))
         cad, _ = outputs.cad_teeth(self.design, self.blank, self.setups, nf, npf)
         return tooth, {Member.PINION: self.blank.z1, Member.GEAR: self.blank.z2}, cad
+
+    def _hypoid_pair(self, side):
+        """The synthesized hypoid pair of ``side`` with the offset kinematics (:func:`.hypoid.hypoid_pair`)."""
+        from .hypoid import hypoid_pair
+
+        if side not in self.synthesis:
+            raise DesignError.single("synthesis.sides", sorted(self.synthesis), f"a list with '{side}'", "-",
+                                     "a hypoid pair meshes through its local synthesis: the pinion flank of this side "
+                                     "was not synthesized")
+        return hypoid_pair(self.synthesis[side])
+
+    def _no_hypoid(self, what):
+        """Stop an analysis that assembles the pair with intersecting axes when the pair is a hypoid."""
+        if self.is_hypoid:
+            from .run_hypoid import NOT_AVAILABLE
+
+            raise DesignError.single("gear_set.hypoid_offset", float(self.blank.a), "0 for " + what, "mm",
+                                     f"{what} is {NOT_AVAILABLE} (it assembles the pair with intersecting axes)")
 
     def _require(self, kind, what):
         if self.kind != kind:

@@ -58,7 +58,14 @@ def write_run(gearset, out, progress: bool = True) -> RunSummary:
     out = Path(out)
     summary = RunSummary(out=out)
     kind = spec.flank.kind
-    n_steps = 2 + (_logspiral_steps(spec) if kind == "log-spiral" else _facemilled_steps(spec))
+    if kind == "log-spiral":
+        n_steps = 2 + _logspiral_steps(spec)
+    elif spec.gear_set.hypoid_offset != 0.0:
+        from .run_hypoid import hypoid_steps
+
+        n_steps = 2 + hypoid_steps(spec)
+    else:
+        n_steps = 2 + _facemilled_steps(spec)
     manifest = {"written_by": "spiralbevel", "spiralbevel_version": __version__, "title": spec.title}
     section = "gear_set" if kind == "log-spiral" else "face_milling"
     steps = Steps(n_steps, progress)
@@ -77,7 +84,6 @@ def _run(gs, out, summary, kind, steps, manifest):
         tmp = Path(tmp)
         with steps.step("blank geometry (ISO 23509)"):
             blank = gs.blank
-            require_no_offset(blank, "spiralbevel run")
         spec = gs.design
         report = {
             "spiralbevel_version": __version__,
@@ -91,7 +97,12 @@ def _run(gs, out, summary, kind, steps, manifest):
         if kind == "log-spiral":
             from .run_logspiral import run_logspiral
 
+            require_no_offset(blank, "spiralbevel run on a log-spiral design")
             run_logspiral(gs, tmp, steps, report, summary)
+        elif blank.a != 0.0:
+            from .run_hypoid import run_hypoid
+
+            run_hypoid(gs, tmp, steps, report, summary)
         else:
             from .run_facemilled import run_facemilled
 

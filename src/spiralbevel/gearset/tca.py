@@ -32,15 +32,18 @@ def run_pair_tca(blank, setups, grids, n_positions: int = 41):
     return results, section, outlines
 
 
-def side_tca(blank, setups, name: str, n_positions: int = 41, misalignment=None, grids=None):
+def side_tca(blank, setups, name: str, n_positions: int = 41, misalignment=None, grids=None, pair=None):
     """TCA of one side (``"drive"`` or ``"coast"``) of a face-milled pair.
 
     Returns (TCAResult or None, report section, (pinion outline, gear outline) in the TCA's frames or None). The
     outlines are the flank grids (``grids``, {(member, side): FlankGeometry}) turned as the phased flanks; without
-    ``grids`` they are None. A failed solve gives (None, section with ``error``, None).
+    ``grids`` they are None. A failed solve gives (None, section with ``error``, None). ``pair`` (a
+    :class:`~spiralbevel.meshing.pair.MeshingPair`) replaces the spiral bevel assembly of the two flanks, e.g. the
+    hypoid pair of a synthesis with its offset kinematics (``gearset.hypoid.hypoid_pair``).
     """
     s1, s2 = SIDES[name]
-    pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
+    if pair is None:
+        pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
     try:
         res = solve_tca(pair.pinion, pair.gear, pair.kinematics, misalignment=misalignment, n_positions=n_positions,
                         start=pair.start)
@@ -100,17 +103,20 @@ SENSITIVITY = (
 )
 
 
-def misalignment_sensitivity(blank, setups, side: str = "drive", n_positions: int = 41):
+def misalignment_sensitivity(blank, setups, side: str = "drive", n_positions: int = 41, pair=None):
     """TE level and contact-path shift of one side for each misalignment of :data:`SENSITIVITY`.
 
     The shift is that of the gear contact point at the mean position, in the pitch-generatrix coordinates of the
     gear's blank outline (``contact_R_mm``, ``contact_h_mm`` of the aligned pair): along the face (toward the heel
     > 0) and along the profile (toward the top > 0), mm. Returns a report section (``{"aligned": ..., name: {...}}``).
+    ``pair`` (a :class:`~spiralbevel.meshing.pair.MeshingPair`) replaces the spiral bevel assembly, e.g. the hypoid
+    pair with its offset kinematics (the misalignments then act on top of the offset).
     """
     from ..meshing.misalignment import Misalignment
 
     s1, s2 = SIDES[side]
-    pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
+    if pair is None:
+        pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
     c1, c2, kin, start = pair.pinion, pair.gear, pair.kinematics, pair.start
     outline = setups[(Member.GEAR, s2)].flank.outline
 

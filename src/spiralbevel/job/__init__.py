@@ -7,7 +7,7 @@ for its report directory; the CLI prints the summary. It computes nothing itself
 
 import sys as _sys
 
-from ..gearset import (blank, conjugacy, facemilled, inspection, logspiral, logspiral_production,  # noqa: F401
+from ..gearset import (blank, conjugacy, facemilled, hypoid, inspection, logspiral, logspiral_production,  # noqa: F401
                        logspiral_tca, ltca, outputs, partial, problems, progress, rating, run, run_facemilled,
                        run_logspiral, tca)
 from ..gearset.run import RunSummary
@@ -15,8 +15,8 @@ from .driver import run_design
 
 # the design-file translation, the analyses and the report writer moved to spiralbevel.gearset (issue 12); the old
 # module paths (spiralbevel.job.facemilled, ...) stay importable as aliases of the same module objects
-for _m in (blank, conjugacy, facemilled, inspection, logspiral, logspiral_production, logspiral_tca, ltca, outputs,
-           partial, problems, progress, rating, run, run_facemilled, run_logspiral, tca):
+for _m in (blank, conjugacy, facemilled, hypoid, inspection, logspiral, logspiral_production, logspiral_tca, ltca,
+           outputs, partial, problems, progress, rating, run, run_facemilled, run_logspiral, tca):
     _sys.modules.setdefault(f"{__name__}.{_m.__name__.rsplit('.', 1)[1]}", _m)
 
 __all__ = ["RunSummary", "run_design"]

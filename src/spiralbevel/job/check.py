@@ -14,9 +14,15 @@ def check_design(spec) -> list:
     blank = blank_from_design(spec)
     try:
         if spec.flank.kind == "log-spiral":
+            from ..gearset.blank import require_no_offset
             from ..gearset.logspiral import design_pair
 
+            require_no_offset(blank, "spiralbevel check on a log-spiral design")
             design_pair(spec, blank)
+        elif blank.a != 0.0:   # a hypoid: the four flanks as 'run' develops them (basic settings, hypoid synthesis)
+            from ..gearset.hypoid import setup_hypoid_flanks
+
+            setup_hypoid_flanks(spec, blank)
         else:
             from ..gearset.facemilled import setup_flanks
 

@@ -116,6 +116,24 @@ class HypoidSynthesis:
     iterations: int
     residual: float
 
+    def summary(self) -> dict:
+        """Plain dict for reports (the keys of the spiral bevel local synthesis' summary where they apply): lengths
+        mm, angles deg, TE second derivative 1/rad, TE magnitude arcsec over half a mesh cycle each side of M."""
+        c = self.pinion_cutter
+        z1 = self.kinematics.z1
+        return {
+            "pinion_cutter": {"point_radius": c.point_radius, "blade_angle": math.degrees(c.blade_angle),
+                              "point_width": c.point_width, "edge_radius": c.edge_radius, "blade": c.blade.value},
+            "pinion_settings": self.pinion_settings.to_dict(degrees=True),
+            "mean_point": self.point.tolist(), "mean_normal": self.normal.tolist(),
+            "phi1_mean": math.degrees(self.phi1_mean), "phi2_mean": math.degrees(self.phi2_mean),
+            "semi_axes": self.semi_axes.tolist(), "eta": math.degrees(self.eta), "path_speed": self.path_speed,
+            "m21_prime": self.m21_prime,
+            # inverse of te_parabola_coefficient: the TE drop over pi/z1 each side of M, arcsec
+            "te_magnitude_arcsec": -self.m21_prime / 2 * (math.pi / z1) ** 2 / math.radians(1.0 / 3600.0),
+            "approach": self.approach, "iterations": self.iterations, "residual": self.residual,
+        }
+
 
 def _rz(t):
     c, s = math.cos(t), math.sin(t)

@@ -1,6 +1,7 @@
 """Face-milled hypoid designs in the job: the four flanks of a hypoid pair (basic settings at each member's mean cone
-distance, local synthesis of the pinion in the crossed-axes frame). Used by ``spiralbevel machine``; the other
-commands still stop on a hypoid (``job.blank.require_no_offset``)."""
+distance, local synthesis of the pinion in the crossed-axes frame), and the hypoid pair of one side phased for meshing
+with the offset kinematics. Used by :class:`~spiralbevel.gearset.GearSet` (``spiralbevel run``, ``machine``); the
+commands that do not handle the offset yet stop on a hypoid (``gearset.blank.require_no_offset``)."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ from ..meshing.tca_result import ARCSEC
 from .facemilled import (DEFAULT_PATH_DIRECTIONS, MEMBERS, PAIR_SIDES, SIDES, FlankSetup, _default_cutter, _FREE,
                          _given_cutter, _given_settings, _in_design_file, effective_synthesis)
 
-__all__ = ["setup_hypoid_flanks"]
+__all__ = ["hypoid_easeoff_maps", "hypoid_pair", "setup_hypoid_flanks"]
 
 #: positions of the TCA that checks the bearing of a synthesized hypoid pair over one mesh cycle
 _CHECK_POSITIONS = 41
@@ -126,3 +127,63 @@ def setup_hypoid_flanks(spec, blank, with_synthesis: bool = False):
     new, synth = _synthesize(spec, blank, out)
     out.update(new)
     return (out, synth) if with_synthesis else out
+
+
+def hypoid_pair(synthesis):
+    """The synthesized hypoid pair of one side phased for meshing: a
+    :class:`~spiralbevel.meshing.pair.MeshingPair` whose kinematics are the offset
+    :class:`~spiralbevel.meshing.hypoid_kinematics.HypoidPairKinematics` and whose flanks meet at the pitch point M of
+    the synthesis at zero roll (``synthesis``: a :class:`~spiralbevel.meshing.synthesis.hypoid_local.HypoidSynthesis`).
+    """
+    from ..meshing.pair import MeshingPair
+    from ..meshing.synthesis.hypoid_local import tca_surfaces
+
+    c1, c2, start = tca_surfaces(synthesis)
+    return MeshingPair(c1, c2, synthesis.kinematics, start)
+
+
+def hypoid_easeoff_maps(setups, pairs, out=None, plots: bool = False):
+    """Ease-off of the drive and coast pinion flanks of a hypoid pair against the flanks exactly conjugate to the
+    wheel flanks in the crossed-axes pair (:func:`~spiralbevel.meshing.hypoid_conjugate.hypoid_easeoff`), as the
+    ``easeoff`` report section of the spiral bevel job (``gearset.inspection.easeoff_maps``).
+
+    Parameters
+    ----------
+    setups : {(Member, Side): FlankSetup}
+    pairs : {side name: MeshingPair or None}
+        The phased hypoid pairs (:func:`hypoid_pair`); a side without a pair gets an ``error`` entry.
+    out : Path, optional
+        Directory of the plots (with ``plots``).
+
+    Returns
+    -------
+    (dict, list of str, dict)
+        Report section (mm; positive = clearance, material removed from the pinion), plot files written, and
+        {side name: EaseOff or None}.
+    """
+    from ..meshing.hypoid_conjugate import hypoid_easeoff
+
+    section: dict = {"sign": "positive = clearance (material removed from the pinion)"}
+    files, maps = [], {}
+    for name, (s1, s2) in PAIR_SIDES.items():
+        maps[name] = None
+        pair = pairs.get(name)
+        if pair is None:
+            section[name] = {"error": f"the {name} side's pinion flank was not synthesized (synthesis.sides)"}
+            continue
+        try:
+            eo = hypoid_easeoff(setups[(Member.PINION, s1)].flank, pair.gear, pair.kinematics)
+        except (GeometryError, ConvergenceError, NoContactError) as err:
+            section[name] = {"error": str(err)}
+            continue
+        maps[name] = eo
+        v = eo.values[np.isfinite(eo.values)]
+        section[name] = {"min_mm": float(v.min()), "max_mm": float(v.max()),
+                         "rms_mm": float(np.sqrt(np.mean(v**2))), "grid": list(eo.values.shape)}
+        if plots and out is not None:
+            from .outputs import save_figure
+
+            fig = eo.plot(kind="both", title=f"Ease-off of the pinion {s1.value} flank against the hypoid conjugate "
+                                             f"of the gear {s2.value} flank ({name} side), µm; + = clearance")
+            files.append(save_figure(fig, out / f"easeoff_{name}.png"))
+    return section, files, maps
