@@ -1,9 +1,14 @@
 """The one compiler of the numerical core: numba's ``njit`` with an on-disk cache that falls back cleanly.
 
-Compiled kernels are declared with :func:`kernel` instead of ``numba.njit``. Machine code is cached next to the
-source (``__pycache__``) or, where that is read-only (a system-wide install), in numba's user-wide cache directory
-(``NUMBA_CACHE_DIR`` when set). Where no cache location is writable at all, the kernel is compiled in memory on first
-use instead of failing: the result is the same, only the first call of each process pays the compile time.
+Compiled kernels are declared with :func:`kernel` instead of ``numba.njit``. Machine code is cached on disk in
+``<cache>/numba/<numba version>-<key>`` (``<cache>`` is ``$SPIRALBEVEL_CACHE``, else ``~/.cache/spiralbevel``; the
+LTCA FE cache lives beside it), where ``key`` hashes the source of every module of ``spiralbevel._core``. numba's own
+cache (``cache=True`` alone, next to the source) is invalidated only by a change of the file that defines the
+compiled function, not by a change of the kernels it calls from other files: after an update of ``_core/jets.py``,
+``newton_jets`` of ``_core/tca_newton.py`` would load machine code that still dispatches to the old jets (found as
+NaN residuals, "no contact", after a merge). Keying the directory by all sources makes every change a fresh cache.
+Where the directory cannot be written, the kernel is compiled in memory on first use instead of failing: the result
+is the same, only the first call of each process pays the compile time.
 
 Why numba: the contact kernels are loops over small independent systems (5 x 5 Newton
 systems, surface jets at single points) where numpy spends most of its time in call overhead; numba compiles the
@@ -14,7 +19,12 @@ figures: README, "Performance".
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 import logging
+import os
+import tempfile
+from pathlib import Path
 
 import numba
 
@@ -27,6 +37,46 @@ _log = logging.getLogger(__name__)
 _OPTIONS = dict(fastmath=False, error_model="numpy", nogil=True)
 
 
+def sources_key(paths) -> str:
+    """Hex digest (16 characters) of the contents of ``paths`` (sorted by name): the cache key of the compiled kernels."""
+    h = hashlib.sha256()
+    for p in sorted(Path(q) for q in paths):
+        h.update(p.name.encode())
+        h.update(p.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def cache_dir() -> Path:
+    """Directory of the compiled kernels' machine code (see the module docstring)."""
+    base = os.environ.get("SPIRALBEVEL_CACHE") or os.path.join(os.path.expanduser("~"), ".cache", "spiralbevel")
+    key = sources_key(Path(__file__).parent.glob("*.py"))
+    return Path(base) / "numba" / f"{numba.__version__}-{key}"
+
+
+def _writable(d: Path) -> bool:
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=d):
+            pass
+        return True
+    except OSError:
+        return False
+
+
+_CACHE: Path | None = None
+
+
+@contextlib.contextmanager
+def _numba_cache_dir(d: Path):
+    """numba reads its cache directory when a function is decorated; set it for our kernels only, then restore."""
+    old = numba.config.CACHE_DIR
+    numba.config.CACHE_DIR = str(d)
+    try:
+        yield
+    finally:
+        numba.config.CACHE_DIR = old
+
+
 def kernel(fun=None, **options):
     """Compile ``fun`` with numba (``cache=True`` where a cache directory is writable, else in memory).
 
@@ -34,9 +84,16 @@ def kernel(fun=None, **options):
     """
     if fun is None:
         return lambda f: kernel(f, **options)
+    global _CACHE
     opts = {**_OPTIONS, **options}
-    try:
-        return numba.njit(cache=True, **opts)(fun)
-    except RuntimeError as err:  # numba: "cannot cache function ...: no locator available"
-        _log.info("numba cache not writable for %s (%s); compiling in memory", fun.__qualname__, err)
-        return numba.njit(cache=False, **opts)(fun)
+    if _CACHE is None:
+        _CACHE = cache_dir()
+    if _writable(_CACHE):
+        try:
+            with _numba_cache_dir(_CACHE):
+                return numba.njit(cache=True, **opts)(fun)
+        except RuntimeError as err:  # numba: "cannot cache function ...: no locator available"
+            _log.info("numba cache not usable for %s (%s); compiling in memory", fun.__qualname__, err)
+    else:
+        _log.info("numba cache directory %s not writable; compiling %s in memory", _CACHE, fun.__qualname__)
+    return numba.njit(cache=False, **opts)(fun)

@@ -164,7 +164,8 @@ def hypoid_easeoff_maps(setups, pairs, out=None, plots: bool = False):
     from ..meshing.hypoid_conjugate import hypoid_easeoff
 
     section: dict = {"sign": "positive = clearance (material removed from the pinion)"}
-    files, maps = [], {}
+    files: list = []
+    maps: dict = {}
     for name, (s1, s2) in PAIR_SIDES.items():
         maps[name] = None
         pair = pairs.get(name)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from . import facemilled as fm
 from . import outputs
+from ..errors import NoContactError
 from .partial import attempt, mark_failed
 from .run_facemilled import _tca_checks
 from .units import synthesis_units
@@ -131,14 +132,18 @@ def rigid_ltca_section(pair, tca, spec) -> dict:
 
     model = ltca_model(pair.pinion, pair.gear, pair.kinematics, tca, rigid=True, grid=_RIGID_GRID)
     probe = model.run(_PROBE_TORQUE_NMM)
+    if probe.approach_torque is None:
+        raise NoContactError("hypoid rigid loaded TCA: the pair does not touch at the mean contact position, so no "
+                             "torque gives the 0.00635 mm approach")
+    T_app = float(probe.approach_torque)
     given = spec.ltca.torque if spec.ltca is not None and not isinstance(spec.ltca.torque, str) else None
-    torque = 1000.0 * float(given) if given is not None else float(probe.approach_torque)
+    torque = 1000.0 * float(given) if given is not None else T_app
     res = model.run(torque, approach_target=None)
     te = np.asarray(res.te_loaded, float)
     return {
         "model": "rigid teeth: contact flattening only, no FE tooth compliance",
         "side": "drive", "positions": int(te.size),
-        "torque_N_m": torque / 1000.0, "torque_for_approach_N_m": float(probe.approach_torque) / 1000.0,
+        "torque_N_m": torque / 1000.0, "torque_for_approach_N_m": T_app / 1000.0,
         "torque_source": "[ltca] torque" if given is not None else "approach 0.00635 mm at the mean contact",
         "loaded_transmission_error_largest_magnitude_arcsec": float(np.max(np.abs(te))),
         "loaded_te_peak_to_peak_arcsec": float(np.ptp(te)),

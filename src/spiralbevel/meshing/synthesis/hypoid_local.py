@@ -32,6 +32,8 @@ from ...conventions import Member, Side
 from ...design.hypoid_member import member_blank
 from ...errors import DesignError, GeometryError
 from ...generation import generate_flank
+from ...machine.cutter import HeadCutter
+from ...machine.settings import MachineSettings
 from ..ellipse import GLEASON_APPROACH
 from ..hypoid_kinematics import HypoidPairKinematics
 from ..hypoid_pair import pitch_point
@@ -95,8 +97,8 @@ class HypoidSynthesis:
     iterations : int; residual : float
     """
 
-    pinion_cutter: object
-    pinion_settings: object
+    pinion_cutter: HeadCutter
+    pinion_settings: MachineSettings
     pinion_flank: object
     gear_flank: object
     kinematics: HypoidPairKinematics
