@@ -95,11 +95,20 @@ DEFAULT_PATH_DIRECTIONS = (0.0, -20.0, 20.0, -40.0, 40.0, -55.0, 55.0)
 #: runs onto the gear's top edge before the transfer point)
 DEFAULT_DEPTH_FRACTIONS = (0.0, 0.5)
 
+#: path directions (deg) turned farther toward the lengthwise direction, tried by the face-milled default after
+#: ``DEFAULT_PATH_DIRECTIONS`` at the mean pitch point: at a large spiral angle a path within 55 deg of the profile
+#: direction can reach the gear's top edge at one end of the mesh cycle and the pinion's fillet at the other, while
+#: a path at 70 deg crosses less of the profile per mesh cycle (bench/bench_robustness.py)
+DEFAULT_LENGTHWISE_DIRECTIONS = (-70.0, 70.0)
+
 #: (path direction deg, depth fraction) of the default synthesis, in the order tried; at most
 #: ``DEFAULT_MAX_SYNTHESES`` local syntheses per side (failed ones included) bound the search
 DEFAULT_CANDIDATES = tuple((eta, frac) for frac in DEFAULT_DEPTH_FRACTIONS
-                           for eta in (DEFAULT_PATH_DIRECTIONS if not frac else DEFAULT_PATH_DIRECTIONS[:3]))
-DEFAULT_MAX_SYNTHESES = 12
+                           for eta in (DEFAULT_PATH_DIRECTIONS + DEFAULT_LENGTHWISE_DIRECTIONS if not frac
+                                       else DEFAULT_PATH_DIRECTIONS[:3]))
+DEFAULT_MAX_SYNTHESES = 16
+
+_ALL_DIRECTIONS = DEFAULT_PATH_DIRECTIONS + DEFAULT_LENGTHWISE_DIRECTIONS
 
 #: positions of the TCA that checks the default bearing over one mesh cycle
 _CHECK_POSITIONS = 41   # as the job's TCA (run_pair_tca)
@@ -274,7 +283,7 @@ def _synthesize_sides(sy, blank, setups, syn):
         best = best if best is not None else spare
         if best is None:   # every default candidate failed: say so, with the last reason
             raise ConvergenceError(f"{name} side: the default local synthesis of the pinion found no pinion flank for "
-                                   f"any path direction ({', '.join(f'{e:g}' for e in DEFAULT_PATH_DIRECTIONS)} deg; "
+                                   f"any path direction ({', '.join(f'{e:g}' for e in _ALL_DIRECTIONS)} deg; "
                                    f"{tried} syntheses; last: {last}); give a [synthesis] section "
                                    "(synthesis.path_direction, synthesis.semi_major_axis, synthesis.te_magnitude)",
                                    getattr(last, "iterations", 0), getattr(last, "residual", float("inf")),
@@ -282,7 +291,7 @@ def _synthesize_sides(sy, blank, setups, syn):
         if default and best[0] >= _CHECK_POSITIONS:   # no candidate's pinion flank covers the face and meshes
             raise ConvergenceError(f"{name} side: the default local synthesis of the pinion gave no pinion flank that "
                                    f"covers the face and meshes with the gear ({tried} syntheses, path directions "
-                                   f"{', '.join(f'{e:g}' for e in DEFAULT_PATH_DIRECTIONS)} deg); give a [synthesis] "
+                                   f"{', '.join(f'{e:g}' for e in _ALL_DIRECTIONS)} deg); give a [synthesis] "
                                    "section (synthesis.path_direction, synthesis.semi_major_axis, "
                                    "synthesis.te_magnitude)", tried, float("inf"), None)
         _, res, free = best
