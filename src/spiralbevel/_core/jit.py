@@ -38,7 +38,7 @@ _OPTIONS = dict(fastmath=False, error_model="numpy", nogil=True)
 
 
 def sources_key(paths) -> str:
-    """Hex digest (16 characters) of the contents of ``paths`` (sorted by name): the cache key of the compiled kernels."""
+    """Hex digest (16 characters) of the contents of ``paths`` (sorted by name): the compiled kernels' cache key."""
     h = hashlib.sha256()
     for p in sorted(Path(q) for q in paths):
         h.update(p.name.encode())
@@ -69,12 +69,13 @@ _CACHE: Path | None = None
 @contextlib.contextmanager
 def _numba_cache_dir(d: Path):
     """numba reads its cache directory when a function is decorated; set it for our kernels only, then restore."""
-    old = numba.config.CACHE_DIR
-    numba.config.CACHE_DIR = str(d)
+    config = numba.config
+    old = config.CACHE_DIR  # type: ignore[attr-defined]  # set from the environment at numba's import
+    config.CACHE_DIR = str(d)  # type: ignore[attr-defined]
     try:
         yield
     finally:
-        numba.config.CACHE_DIR = old
+        config.CACHE_DIR = old  # type: ignore[attr-defined]
 
 
 def kernel(fun=None, **options):
