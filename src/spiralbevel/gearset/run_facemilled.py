@@ -125,17 +125,7 @@ def run_facemilled(gs, out, steps, report, summary):
     if o.step:
         with steps.step("STEP"):
             summary.files += outputs.step_files(tooth, out, teeth=teeth, cad=cad)
-    for name in ("drive", "coast"):
-        sec = report["tca"][name]
-        summary.highlights.append(f"TCA {name}: " + (sec["error"] if "error" in sec else
-                                  f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec, "
-                                  f"{len(sec['edge_contact_positions_deg'])} edge-contact positions"))
-    for m in fm.MEMBERS:
-        for s in fm.SIDES:
-            f = flanks[m.value][s.value]
-            summary.highlights.append(
-                f"{m.value} {s.value}: mean spiral angle {f['spiral_angle_deg']:.4f} deg, "
-                f"normal pressure angle {f['pressure_angle_deg']:.4f} deg ({machines[m.value][s.value]['source']})")
+    summary.highlights += tca_and_flank_highlights(report, flanks, machines)
 
 
 class _Geo:
@@ -143,6 +133,24 @@ class _Geo:
 
     def __init__(self, point, k1, k2):
         self.point, self.k1, self.k2 = point, k1, k2
+
+
+def tca_and_flank_highlights(report, flanks, machines) -> list[str]:
+    """Console lines of a face-milled run (spiral bevel or hypoid): TE and edge contacts per side, achieved mean-point
+    angles per flank."""
+    lines = []
+    for name in ("drive", "coast"):
+        sec = report["tca"][name]
+        lines.append(f"TCA {name}: " + (sec["error"] if "error" in sec else
+                     f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec, "
+                     f"{len(sec['edge_contact_positions_deg'])} edge-contact positions"))
+    for m in fm.MEMBERS:
+        for s in fm.SIDES:
+            f = flanks[m.value][s.value]
+            source = machines[m.value][s.value]["source"]
+            lines.append(f"{m.value} {s.value}: mean spiral angle {f['spiral_angle_deg']:.4f} deg, "
+                         f"normal pressure angle {f['pressure_angle_deg']:.4f} deg ({source})")
+    return lines
 
 
 def tca_side_checks(res, name, synth, z1) -> list[str]:

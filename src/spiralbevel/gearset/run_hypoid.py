@@ -10,7 +10,7 @@ from . import facemilled as fm
 from . import outputs
 from ..errors import NoContactError
 from .partial import attempt, mark_failed
-from .run_facemilled import _tca_checks
+from .run_facemilled import _tca_checks, tca_and_flank_highlights
 from .units import synthesis_units
 
 #: status of an analysis the hypoid branch does not run yet
@@ -106,17 +106,7 @@ def run_hypoid(gs, out, steps, report, summary):
                     fig.suptitle(f"TCA, {name} side: {spec.title}")
                     fig.tight_layout(rect=(0, 0, 1, 0.93))
                     summary.files.append(outputs.save_figure(fig, out / f"tca_{name}.png"))
-    for name in ("drive", "coast"):
-        sec = report["tca"][name]
-        summary.highlights.append(f"TCA {name}: " + (sec["error"] if "error" in sec else
-                                  f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec, "
-                                  f"{len(sec['edge_contact_positions_deg'])} edge-contact positions"))
-    for m in fm.MEMBERS:
-        for s in fm.SIDES:
-            f = flanks[m.value][s.value]
-            summary.highlights.append(
-                f"{m.value} {s.value}: mean spiral angle {f['spiral_angle_deg']:.4f} deg, "
-                f"normal pressure angle {f['pressure_angle_deg']:.4f} deg ({machines[m.value][s.value]['source']})")
+    summary.highlights += tca_and_flank_highlights(report, flanks, machines)
     summary.highlights.append(f"hypoid pair (offset {float(blank.a):g} mm): " + "; ".join(
         f"{w['analysis']} {NOT_AVAILABLE}" for w in missing))
 
