@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from .generation import profile
-from .generation_jet import _roll_offset, _to_member_stack
+from .generation_jet import _to_member_stack, meshing_coefficients
 
 __all__ = ["blade_profile", "blade_u", "blade_points", "blade_jet", "meshing_function"]
 
@@ -52,35 +52,13 @@ def meshing_function(u, phi, psi, cp, mp):
 
 def _terms(u, phi, psi, cp, mp, meridian=None):
     """f = P cos phi + Q sin phi + R at (u, phi, psi_c) and its partial derivatives f_u, f_phi, f_psi, with the
-    pieces the jet needs (the same expressions as ``generation_jet._jet``)."""
-    rho, z, chi, dchi = (meridian or blade_profile)(u, cp)
-    s, S, g, XB, q = cp["s"], mp["S"], mp["gamma"], mp["XB"], mp["q"]
-    psi_i, w, dw, E, dE, ddE = _roll_offset(psi, mp)
-    sg, cg = np.sin(g), np.cos(g)
-    b0 = np.pi - q + psi
-    sb, cb = np.sin(b0), np.cos(b0)
-    Ox, Oz, Ox_p, Oz_p = w * cg, 1.0 - w * sg, dw * cg, -dw * sg
-    wx, wy, wz = -w * sg * E, -w * cg * XB - dE, -w * cg * E
-    nr, nc = np.sin(chi), np.cos(chi)
-    nz = s * nc
-    h = z * nr - rho * nz
-    SOz = S * Oz
-    P = nr * (wx - SOz * sb)
-    Q = nr * (SOz * cb + wy) - h * Ox
-    R = nz * (S * Ox * sb + wz)
-    t = dw * E + w * dE
-    wx_p, wy_p, wz_p = -sg * t, -cg * XB * dw - ddE, -cg * t
-    nr_u, nz_u = nc * dchi, -s * nr * dchi
-    P_u = nr_u * (wx - SOz * sb)
-    Q_u = nr_u * (SOz * cb + wy) - (-1.0 + z * nr_u - rho * nz_u) * Ox
-    R_u = nz_u * (S * Ox * sb + wz)
-    P_p = nr * (-S * (Oz_p * sb + Oz * cb) + wx_p)
-    Q_p = nr * (S * (Oz_p * cb - Oz * sb) + wy_p) - h * Ox_p
-    R_p = nz * (S * (Ox_p * sb + Ox * cb) + wz_p)
+    pieces the jet needs (coefficients of :func:`~spiralbevel._core.generation_jet.meshing_coefficients`)."""
+    C = meshing_coefficients(u, psi, cp, mp, meridian or blade_profile)
+    P, Q, R = C["P"], C["Q"], C["R"]
     c, sn = np.cos(phi), np.sin(phi)
-    return dict(f=P * c + Q * sn + R, f_u=P_u * c + Q_u * sn + R_u, f_phi=Q * c - P * sn,
-                f_psi=P_p * c + Q_p * sn + R_p, rho=rho, z=z, chi=chi, dchi=dchi, psi_i=psi_i, w=w, E=E, dE=dE,
-                sb=sb, cb=cb, c=c, sn=sn)
+    return dict(f=P * c + Q * sn + R, f_u=C["P_u"] * c + C["Q_u"] * sn + C["R_u"], f_phi=Q * c - P * sn,
+                f_psi=C["P_p"] * c + C["Q_p"] * sn + C["R_p"], rho=C["rho"], z=C["z"], chi=C["chi"],
+                dchi=C["dchi"], psi_i=C["psi_i"], w=C["w"], E=C["E"], dE=C["dE"], sb=C["sb"], cb=C["cb"], c=c, sn=sn)
 
 
 def blade_u(phi, psi, cp, mp, max_iter=8):

@@ -73,17 +73,19 @@ def _roll_offset(psi, mp):
     return psi_i, w, dw, E, dE, ddE
 
 
-def _jet(u, psi, cp, mp, Rc):
-    u, psi = np.broadcast_arrays(np.asarray(u, float), np.asarray(psi, float))
-    shape = u.shape
-    u, psi = u.reshape(-1), psi.reshape(-1)
-    rho, z, chi, dchi = profile(u, cp)
-    s, S, g, XB, XD, q = cp["s"], mp["S"], mp["gamma"], mp["XB"], mp["XD"], mp["q"]
+def meshing_coefficients(u, psi, cp, mp, meridian=None):
+    """Coefficients of the equation of meshing of generation P cos phi + Q sin phi + R = 0 at (u, psi_c) and their
+    partial derivatives w.r.t. u (``P_u`` ...) and psi_c (``P_p`` ...), with the pieces the jets reuse (meridian
+    rho, z, chi, dchi of ``meridian(u, cp)`` (default :func:`profile`), roll and offset of the cradle angle).
+
+    The derivative w.r.t. u uses d h/du = -1 + z nr_u - rho nz_u (the meridian tangent has unit length).
+    """
+    rho, z, chi, dchi = (meridian or profile)(u, cp)
+    s, S, g, XB, q = cp["s"], mp["S"], mp["gamma"], mp["XB"], mp["q"]
     psi_i, w, dw, E, dE, ddE = _roll_offset(psi, mp)
     sg, cg = np.sin(g), np.cos(g)
     b0 = np.pi - q + psi
     sb, cb = np.sin(b0), np.cos(b0)
-    # equation of meshing P cos phi + Q sin phi + R = 0 and its root, as in solve_contact / reference_angle
     Ox, Oz, Ox_p, Oz_p = w * cg, 1.0 - w * sg, dw * cg, -dw * sg
     wx, wy, wz = -w * sg * E, -w * cg * XB - dE, -w * cg * E
     nr, nc = np.sin(chi), np.cos(chi)
@@ -93,15 +95,6 @@ def _jet(u, psi, cp, mp, Rc):
     P = nr * (wx - SOz * sb)
     Q = nr * (SOz * cb + wy) - h * Ox
     R = nz * (S * Ox * sb + wz)
-    disc = -R / np.hypot(P, Q)
-    half = np.arccos(np.clip(disc, -1.0, 1.0))
-    base = np.arctan2(Q, P)
-    ref = reference_angle(psi, mp, Rc)
-    # the root nearer the reference angle: |wrap(base + half - ref)| <= |wrap(base - half - ref)| exactly when
-    # sin(base - ref) sin(half) <= 0, and sin(half) >= 0
-    phi = np.where(np.sin(base - ref) <= 0.0, base + half, base - half)
-    cphi, sphi = np.cos(phi), np.sin(phi)
-    # implicit derivatives of the root (d h / du = -1 + z nr_u - rho nz_u: the meridian tangent has unit length)
     t = dw * E + w * dE
     wx_p, wy_p, wz_p = -sg * t, -cg * XB * dw - ddE, -cg * t
     nr_u, nz_u = nc * dchi, -s * nr * dchi
@@ -111,6 +104,30 @@ def _jet(u, psi, cp, mp, Rc):
     P_p = nr * (-S * (Oz_p * sb + Oz * cb) + wx_p)
     Q_p = nr * (S * (Oz_p * cb - Oz * sb) + wy_p) - h * Ox_p
     R_p = nz * (S * (Ox_p * sb + Ox * cb) + wz_p)
+    return dict(P=P, Q=Q, R=R, P_u=P_u, Q_u=Q_u, R_u=R_u, P_p=P_p, Q_p=Q_p, R_p=R_p, rho=rho, z=z, chi=chi,
+                dchi=dchi, nr=nr, nc=nc, psi_i=psi_i, w=w, dw=dw, E=E, dE=dE, sb=sb, cb=cb, sg=sg, cg=cg)
+
+
+def _jet(u, psi, cp, mp, Rc):
+    u, psi = np.broadcast_arrays(np.asarray(u, float), np.asarray(psi, float))
+    shape = u.shape
+    u, psi = u.reshape(-1), psi.reshape(-1)
+    s, S, g, XB, XD = cp["s"], mp["S"], mp["gamma"], mp["XB"], mp["XD"]
+    C = meshing_coefficients(u, psi, cp, mp)
+    P, Q, R = C["P"], C["Q"], C["R"]
+    rho, z, dchi, nr, nc = C["rho"], C["z"], C["dchi"], C["nr"], C["nc"]
+    psi_i, w, E, dE, sb, cb, sg, cg = C["psi_i"], C["w"], C["E"], C["dE"], C["sb"], C["cb"], C["sg"], C["cg"]
+    # the root of the equation of meshing, as in solve_contact / reference_angle
+    disc = -R / np.hypot(P, Q)
+    half = np.arccos(np.clip(disc, -1.0, 1.0))
+    base = np.arctan2(Q, P)
+    ref = reference_angle(psi, mp, Rc)
+    # the root nearer the reference angle: |wrap(base + half - ref)| <= |wrap(base - half - ref)| exactly when
+    # sin(base - ref) sin(half) <= 0, and sin(half) >= 0
+    phi = np.where(np.sin(base - ref) <= 0.0, base + half, base - half)
+    cphi, sphi = np.cos(phi), np.sin(phi)
+    # implicit derivatives of the root
+    P_u, Q_u, R_u, P_p, Q_p, R_p = C["P_u"], C["Q_u"], C["R_u"], C["P_p"], C["Q_p"], C["R_p"]
     f_phi = Q * cphi - P * sphi
     phi_u = -(P_u * cphi + Q_u * sphi + R_u) / f_phi
     phi_p = -(P_p * cphi + Q_p * sphi + R_p) / f_phi
