@@ -1,5 +1,5 @@
-"""ISO 23509 Annex F, Sample 2 (the hypoid sample): its input data as ``BlankInput`` keywords, shared by the hypoid
-tests (mm, rad)."""
+"""ISO 23509 Annex F, Sample 2 (the hypoid sample): its input data as ``BlankInput`` keywords (mm, rad) and as a
+design file, shared by the hypoid tests."""
 
 import math
 
@@ -7,3 +7,24 @@ R = math.radians
 
 SAMPLE2 = dict(z1=13, z2=42, b=30.0, beta_m=R(50.0), rc0=63.5, de2=170.0, a=15.0, f_alim=1.0, c_ham=0.35, k_d=2.0,
                k_c=0.125, k_t=0.1, jet=0.2, taper="given", theta_a2=R(1.0), theta_f2=R(4.0))
+
+#: the same sample as a face-milled design file (degrees and mm, as users write it)
+SAMPLE2_TOML = """title = "Sample 2 hypoid"
+[gear_set]
+pinion_teeth = 13
+gear_teeth = 42
+outer_pitch_diameter = 170.0
+face_width = 30.0
+mean_spiral_angle = 50
+pinion_hand = "LH"
+cutter_radius = 63.5
+hypoid_offset = 15.0
+limit_pressure_angle_factor = 1.0
+[gear_set.depth]
+taper = "given"
+gear_addendum_dedendum_angles = [1.0, 4.0]
+mean_addendum_factor = 0.35
+thickness_factor = 0.1
+[flank]
+kind = "face-milled"
+"""

@@ -6,31 +6,13 @@ import re
 from typer.testing import CliRunner
 
 from spiralbevel.cli import app
+from _hypoid_sample2 import SAMPLE2_TOML
 
-TOML = """title = "Sample 2 hypoid"
-[gear_set]
-pinion_teeth = 13
-gear_teeth = 42
-outer_pitch_diameter = 170.0
-face_width = 30.0
-mean_spiral_angle = 50
-pinion_hand = "LH"
-cutter_radius = 63.5
-hypoid_offset = 15.0
-limit_pressure_angle_factor = 1.0
-[gear_set.depth]
-taper = "given"
-gear_addendum_dedendum_angles = [1.0, 4.0]
-mean_addendum_factor = 0.35
-thickness_factor = 0.1
-[flank]
-kind = "face-milled"
-"""
 
 
 def test_machine_prints_the_hypoid_settings(tmp_path):
     f = tmp_path / "hypoid.toml"
-    f.write_text(TOML)
+    f.write_text(SAMPLE2_TOML)
     res = CliRunner().invoke(app, ["machine", str(f)])
     assert res.exit_code == 0, res.output
     text = " ".join(res.output.split())

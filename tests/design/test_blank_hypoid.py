@@ -27,7 +27,7 @@ from typer.testing import CliRunner
 from spiralbevel.cli import app
 from spiralbevel.design.blank import BlankInput, compute_blank
 from spiralbevel.design.blank_hypoid import hypoid_pitch_cone
-from _hypoid_sample2 import SAMPLE2
+from _hypoid_sample2 import SAMPLE2, SAMPLE2_TOML
 
 R = math.radians
 # ISO 23509 Annex F.3 Sample 2, published (subset): lengths mm, angles deg
@@ -184,25 +184,6 @@ def test_offset_sign_follows_iso_b3():
     assert neg["beta_m1"] < neg["beta_m2"] and neg["alpha_lim"] > 0.0
 
 
-SAMPLE2_TOML = """title = "Sample 2 hypoid"
-[gear_set]
-pinion_teeth = 13
-gear_teeth = 42
-outer_pitch_diameter = 170.0
-face_width = 30.0
-mean_spiral_angle = 50
-pinion_hand = "LH"
-cutter_radius = 63.5
-hypoid_offset = 15.0
-limit_pressure_angle_factor = 1.0
-[gear_set.depth]
-taper = "given"
-gear_addendum_dedendum_angles = [1.0, 4.0]
-mean_addendum_factor = 0.35
-thickness_factor = 0.1
-[flank]
-kind = "face-milled"
-"""
 
 
 def test_cli_blank_shows_the_hypoid_sheet(tmp_path):
