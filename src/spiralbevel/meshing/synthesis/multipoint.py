@@ -202,6 +202,7 @@ def _stations(x, step):
         for p in pts:
             k = max(1, int(math.ceil((p - cur) / step - 1e-9)))
             st.extend(cur + (p - cur) * np.arange(1, k + 1) / k)
+            st[-1] = p              # the control point itself, not its rounded sum (a key of the path)
             cur = p
         out[d] = d * np.array(st)
     return out
@@ -305,13 +306,19 @@ def multipoint_control(synthesis, cmc, control_points, *, tol_abs: float = 1e-9,
             raise ConvergenceError("multi-point control: a control-point system diverged in the fixed-point iteration",
                                    res.iterations, float(np.max(res.residual)), res.x)
         change = max(np.max(np.abs(res.x[:, 1] - y[:, 1])) / 1e-11, np.max(np.abs(res.x[:, 5] - y[:, 5])) / 1e-12)
-        y = res.x
+        y, (p1, p2) = res.x, res.params
         if change < 1.0:        # nodes fixed to 1e-11 rad and 1e-12 mm
             break
     else:
         raise ConvergenceError(f"multi-point control: offset rates not consistent after {max_outer} iterations "
                                f"(last scaled change {change:.3g})", max_outer, float(change), y)
     law = _law(interpolation, y, base)
+    y = np.concatenate([p1, p2, y[:, 4:6]], -1)    # (u1, psi_c1, u2, psi_c2, phi2, E_m1)
+    below = (y[:, 0] < system.gen.cp["u_j"]) | (y[:, 2] < system.gear.generator.cp["u_j"])
+    if np.any(below):       # the systems are solved on the blades (continued past the fillet junction)
+        raise DesignError.single("control_points", x[below].tolist(), "pinion rotations whose controlled contact "
+                                 "lies on the blades of both members (see active_range)", "rad",
+                                 "the contact there is below a fillet junction")
     settings = law.settings(synthesis.pinion_settings)
     flank = generate_flank(synthesis.pinion_cutter, settings, _blank_of(synthesis), Member.PINION,
                            synthesis.pinion_flank.side)
