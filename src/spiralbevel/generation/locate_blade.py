@@ -3,8 +3,8 @@
 The (u, psi_c) chart of the generated flank folds where the two cutter angles that solve the equation of meshing of
 generation merge (at low spiral angles that fold runs through the face width); the (phi, psi_c) chart, with the blade
 parameter u solved from the equation of meshing, is regular there (docs/conventions.md, "Fold of generation").
-Points on the blade (u >= u_j) are located here by batched Newton solves in (phi, psi_c); the fillet keeps the
-(u, psi_c) chart (``locate.Locator``).
+Points on the blade (u >= u_j) are located here by compiled Newton solves in (phi, psi_c)
+(:mod:`spiralbevel._core.blade_locate`); the fillet keeps the (u, psi_c) chart (``locate.Locator``).
 """
 
 from __future__ import annotations
@@ -14,7 +14,6 @@ import itertools
 import numpy as np
 from scipy.spatial import cKDTree
 
-from spiralbevel._core.newton import solve_batched
 from spiralbevel.conventions import TOL
 
 __all__ = ["BladeLocator"]
@@ -73,18 +72,13 @@ class BladeLocator:
         d = np.angle(np.exp(1j * (phi - self.gen.reference_angle(psi))))
         return np.isfinite(u) & (np.abs(d) <= self.phi_span), u
 
-    def _solve(self, fun, starts, accept=None, solver=None):
-        """Batched Newton from the first start; the following starts for the systems not yet converged (or whose
-        solution ``accept(x, u)`` rejects). Returns (x (..., 2), converged (...), u (...) mm).
-        ``solver(x0) -> (x, converged, u)`` replaces the numpy Newton on ``fun`` (forward-difference Jacobian) by a
-        compiled one."""
+    def _solve(self, solver, starts, accept=None):
+        """Compiled Newton ``solver(x0) -> (x, converged, u)`` (:mod:`spiralbevel._core.blade_locate`) from the first
+        start; the following starts for the systems not yet converged (or whose solution ``accept(x, u)`` rejects).
+        Returns (x (..., 2), converged (...), u (...) mm)."""
         x, conv, u = None, None, None
         for x0 in starts:
-            if solver is None:
-                res = solve_batched(fun, x0, tol=TOL.newton_abs * 10, max_iter=TOL.max_iter, max_step=_MAX_STEP)
-                xr, cv, ur = res.x, res.converged, None
-            else:
-                xr, cv, ur = solver(x0)
+            xr, cv, ur = solver(x0)
             ok, ur = self.on_branch(xr, ur)
             ok &= cv
             if accept is not None:
@@ -129,7 +123,7 @@ class BladeLocator:
             with np.errstate(invalid="ignore"):
                 return u >= self.u_j - 1e-9
 
-        return self._solve(None, starts, accept, solver)
+        return self._solve(solver, starts, accept)
 
     def at_R_u(self, R, u, anchor=None):
         """(phi, psi_c), converged mask and u (mm) of the blade points with cone-distance coordinate R (mm) and blade
@@ -137,19 +131,25 @@ class BladeLocator:
         so that the line u = const is the one through the flank's own contact zone."""
         R, u = np.broadcast_arrays(np.asarray(R, float), np.asarray(u, float))
         gen, ol = self.gen, self.outline
+        from spiralbevel._core import blade_locate, generation_blade_jet  # numba off the CLI's import path
 
-        def fun(x):
-            ax, rad, uu = gen.blade_axial_radial(x[..., 0], x[..., 1])
-            Rx, _ = ol.Rh(ax, rad)
-            return np.stack([Rx - R, uu - u], -1)
+        prm = generation_blade_jet.parameters(gen.cp, gen.mp, False, 0.0)
+        Rf, uf = np.ascontiguousarray(R.ravel()), np.ascontiguousarray(u.ravel())
+
+        def solver(x0):     # compiled Newton (_core/blade_locate.py)
+            x, uu, conv, _ = blade_locate.locate_R_u(
+                prm, np.ascontiguousarray(np.broadcast_to(x0, R.shape + (2,)).reshape(-1, 2), float), Rf, uf,
+                float(np.sin(ol.delta)), float(np.cos(ol.delta)), TOL.newton_abs * 10, TOL.max_iter, _MAX_STEP)
+            return x.reshape(R.shape + (2,)), conv.reshape(R.shape), uu.reshape(R.shape)
 
         # starts: table points nearest the root-cone point at R (the junction runs close to the root), then those
         # nearest in (R, u)
         ax0, rad0 = ol.axial_radius(R, ol.h_root(R))
         near_root = np.stack([ax0, rad0], -1)
-        starts = [] if anchor is None else [np.broadcast_to(np.asarray(anchor, float), R.shape + (2,))]
-        starts += [self._nearest(self._tab, near_root, R.shape, k) for k in range(3)]
-        starts += [self._nearest(self._Ru, np.stack([R, u], -1), R.shape, k) for k in range(3)]
+        starts = itertools.chain(
+            [] if anchor is None else [np.broadcast_to(np.asarray(anchor, float), R.shape + (2,))],
+            (self._nearest(self._tab, near_root, R.shape, k) for k in range(3)),
+            (self._nearest(self._Ru, np.stack([R, u], -1), R.shape, k) for k in range(3)))   # when needed
         depth = ol.ham + ol.hfm
 
         def accept(x, u):   # the junction line's point of this face station, not one of its continuation
@@ -157,4 +157,4 @@ class BladeLocator:
             with np.errstate(invalid="ignore"):
                 return np.abs(ol.Rh(ax, rad)[1] - ol.h_root(R)) < depth
 
-        return self._solve(fun, starts, accept)
+        return self._solve(solver, starts, accept)
