@@ -10,8 +10,9 @@ blank offset E_m1 a different value at every cradle angle:
    the pinion generated
    with the instantaneous offset E_m1 and the gear (coincident points, collinear normals, both equations of meshing of
    generation) plus the CMC condition Delta phi2(x_k) = CMC(x_k) - CMC(0) of Eq. (17) with an absolute tolerance — for
-   E_m1 and the contact parameters (``_multipoint_system``: theta_1, theta_2 in closed form, a 6 x 6 system, all
-   control points in one batched Newton solve, started by continuation from M);
+   E_m1 and the contact parameters (``_multipoint_system``: u_1, u_2 from the equations of meshing inside the
+   compiled (phi, psi_c) jets, a 6 x 6 system, all control points in one compiled Newton call,
+   ``_core.multipoint_newton``, started by continuation from M);
 2. the cradle angle psi_c1 at which each control-point contact is generated is the node of the law E_m1(psi_c1);
    between nodes the law is linear (seed 001 §4.3.1 step 3) or the interpolating polynomial (``OffsetLaw``);
 3. the pinion generated with a variable offset has dE_m1/dt in its relative velocity (docs/theory/generation.md, Eqs.
