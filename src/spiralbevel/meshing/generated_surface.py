@@ -65,6 +65,22 @@ class GeneratedSurface:
         prm = self._prm()
         return None if prm is None else (1, prm)
 
+    @property
+    def boundary_jet(self):
+        """``(kind, prm)`` of the compiled boundary margins with their gradients
+        (:func:`spiralbevel._core.tca_edge.margins`, kind ``MARGIN_GENERATED``; the same margins as
+        :meth:`boundary_margins`), or None without a compiled jet."""
+        prm = self._prm()
+        if prm is None:
+            return None
+        if getattr(self, "_bprm_src", None) is not prm:
+            ol, gen = self.flank.outline, self.flank.generator
+            head = [math.sin(ol.delta), math.cos(ol.delta), ol.Ri, ol.Re, ol.ham, ol.Rm,
+                    math.tan(ol.delta_a - ol.delta), gen.cp["u_j"]]
+            self._bprm = np.concatenate([np.array(head, float), prm])
+            self._bprm_src = prm
+        return 1, self._bprm
+
     def _prm(self):
         """Parameter vector of :mod:`spiralbevel._core.generation_blade_jet`, rebuilt when the generator's parameter
         dicts are replaced (solvers that vary a setting swap ``generator.mp``)."""
