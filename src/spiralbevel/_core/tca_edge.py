@@ -171,6 +171,11 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J):
         Assembly constants (:mod:`spiralbevel._core.tca_newton`).
     h : float
         Step of the central difference of tau.
+
+    Returns
+    -------
+    float
+        n1 . n2 of the fixed-frame unit normals (about -1 at a contact).
     """
     S1 = SA[0] if member == 0 else SB
     S2 = SB if member == 0 else SA[0]
@@ -224,6 +229,7 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J):
         for i in range(3):
             acc += nB[i] * (dtf[i] - tf[i] * tt)
         J[4, ia + j] = acc / nrm
+    return S1f[0, 1] * Q[0, 1] + S1f[1, 1] * Q[1, 1] + S1f[2, 1] * Q[2, 1]
 
 
 @kernel
@@ -253,32 +259,40 @@ def edge_update(F, J, x, tol, rcond):
 
 
 @kernel
-def _jet_points(kind, prm, mkind, mprm, e, q0, q1, h, SA, gA, dgA, Sm, gm, dgm):
+def _jet_points(kind, prm, mkind, mprm, share, e, q0, q1, h, SA, gA, dgA, Sm, gm, dgm):
     """Jet of member A and margin e (value, gradient) at q_A and q_A +- h e_j into ``SA (5, 3, 6)``, ``gA (5,)``,
-    ``dgA (5, 2)`` (``Sm``, ``gm``, ``dgm`` scratch)."""
+    ``dgA (5, 2)`` (``Sm``, ``gm``, ``dgm`` scratch). ``share``: the margins evaluate A's own jet (a generated flank:
+    the blade jet of the margins is A's jet, written straight into SA, not evaluated twice)."""
     for k in range(5):
         a = q0 + (h if k == 1 else (-h if k == 2 else 0.0))
         b = q1 + (h if k == 3 else (-h if k == 4 else 0.0))
-        surface_jet(kind, prm, a, b, SA[k])
-        margins(mkind, mprm, a, b, Sm, gm, dgm)
+        if share:
+            margins(mkind, mprm, a, b, SA[k], gm, dgm)
+        else:
+            surface_jet(kind, prm, a, b, SA[k])
+            margins(mkind, mprm, a, b, Sm, gm, dgm)
         gA[k] = gm[e]
         dgA[k, 0] = dgm[e, 0]
         dgA[k, 1] = dgm[e, 1]
 
 
 @kernel
-def edge_newton_jets(kind1, p1, mk1, mp1, kind2, p2, mk2, mp2, c1, s1, x, member, edge, d, M2, h, tol, max_iter,
-                     rcond):
-    """Batched edge Newton for two surfaces with compiled jets and margins, ``x (m, 5)`` updated in place.
+def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c1, s1, x, member, edge, d, M2, h,
+                     tol, max_iter, rcond):
+    """Batched edge Newton for two surfaces with compiled jets and margins, ``x (m, 5)`` updated in place
+    (``share1``, ``share2``: see :func:`_jet_points`).
 
     Returns
     -------
     converged : (m,) bool
+    ndot : (m,) float
+        n1 . n2 of the fixed-frame normals at the final iterate.
     iterations : int
         Largest number of Newton updates of any system.
     """
     m = x.shape[0]
     conv = np.zeros(m, np.bool_)
+    ndot = np.empty(m)
     SA = np.empty((5, 3, 6))
     SB = np.empty((3, 6))
     gA = np.empty(5)
@@ -293,27 +307,28 @@ def edge_newton_jets(kind1, p1, mk1, mp1, kind2, p2, mk2, mp2, c1, s1, x, member
         A = member[i]
         for it in range(max_iter + 1):
             if A == 0:
-                _jet_points(kind1, p1, mk1, mp1, edge[i], x[i, 0], x[i, 1], h, SA, gA, dgA, Sm, gm, dgm)
+                _jet_points(kind1, p1, mk1, mp1, share1, edge[i], x[i, 0], x[i, 1], h, SA, gA, dgA, Sm, gm, dgm)
                 surface_jet(kind2, p2, x[i, 2], x[i, 3], SB)
             else:
-                _jet_points(kind2, p2, mk2, mp2, edge[i], x[i, 2], x[i, 3], h, SA, gA, dgA, Sm, gm, dgm)
+                _jet_points(kind2, p2, mk2, mp2, share2, edge[i], x[i, 2], x[i, 3], h, SA, gA, dgA, Sm, gm, dgm)
                 surface_jet(kind1, p1, x[i, 0], x[i, 1], SB)
-            edge_assemble(SA, gA, dgA, SB, A, c1[i], s1[i], x[i], d, M2, h, F, J)
+            ndot[i] = edge_assemble(SA, gA, dgA, SB, A, c1[i], s1[i], x[i], d, M2, h, F, J)
             r = edge_update(F, J, x[i], tol, rcond)
             if r != 0 or it == max_iter:
                 conv[i] = r == 1
                 iters = max(iters, it)
                 break
-    return conv, iters
+    return conv, ndot, iters
 
 
 @kernel
-def edge_step_batch(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, tol, rcond, state):
+def edge_step_batch(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, tol, rcond, state, ndot):
     """One iteration of the edge Newton for surfaces evaluated by the caller: for every row, :func:`edge_assemble`
-    from ``SA (m, 5, 3, 6)``, ``gA (m, 5)``, ``dgA (m, 5, 2)``, ``SB (m, 3, 6)``, then :func:`edge_update` of
-    ``x (m, 5)`` in place; ``state (m,)`` receives its result (1 converged, -1 failed, 0 stepped)."""
+    from ``SA (m, 5, 3, 6)``, ``gA (m, 5)``, ``dgA (m, 5, 2)``, ``SB (m, 3, 6)`` (its n1 . n2 into ``ndot (m,)``),
+    then :func:`edge_update` of ``x (m, 5)`` in place; ``state (m,)`` receives its result (1 converged, -1 failed,
+    0 stepped)."""
     F = np.empty(5)
     J = np.empty((5, 5))
     for i in range(x.shape[0]):
-        edge_assemble(SA[i], gA[i], dgA[i], SB[i], member[i], c1[i], s1[i], x[i], d, M2, h, F, J)
+        ndot[i] = edge_assemble(SA[i], gA[i], dgA[i], SB[i], member[i], c1[i], s1[i], x[i], d, M2, h, F, J)
         state[i] = edge_update(F, J, x[i], tol, rcond)

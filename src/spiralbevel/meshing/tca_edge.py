@@ -25,6 +25,7 @@ import numpy as np
 
 from .._core import tca_batch as _b
 from .._core import tca_edge as _ke
+from .._core.jets import GENERATED
 from .contact_surface import surface_derivatives
 
 __all__ = ["solve_edge_contacts", "edge_stage"]
@@ -45,6 +46,20 @@ def _boundary(surface):
     return int(b[0]), np.ascontiguousarray(b[1], float)
 
 
+def _shares(kind, prm, b):
+    """True where the margins ``b`` of a generated flank evaluate the surface's own jet ``(kind, prm)``."""
+    return bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and np.array_equal(b[1][8:], prm))
+
+
+def _all_margins(surface, q):
+    """All boundary margins (m, k) of ``surface`` at ``q (m, 2)``: compiled where it has ``boundary_jet``."""
+    b = _boundary(surface)
+    if b is not None:
+        return _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))[0]
+    with np.errstate(invalid="ignore"):
+        return np.asarray(surface.boundary_margins(q), float)
+
+
 def _margin_jets(surface, q, e):
     """Margin ``e (m,)`` and its gradient of ``surface`` at ``q (m, 2)``: (g (m,), dg (m, 2))."""
     b = _boundary(surface)
@@ -63,6 +78,7 @@ def _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter):
     """The edge Newton with the surfaces evaluated by numpy between compiled iterations; ``x`` updated in place."""
     m = len(x)
     conv = np.zeros(m, bool)
+    ndot = np.full(m, np.nan)
     active = np.ones(m, bool)
     h = _H_TAU
     pert = np.array([[0, 0], [h, 0], [-h, 0], [0, h], [0, -h]], float)
@@ -86,14 +102,14 @@ def _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter):
                 g, dg = _margin_jets(surfs[A], qa, np.repeat(edge[a[s]], 5))
             gA[s], dgA[s] = g.reshape(-1, 5), dg.reshape(-1, 5, 2)
         xa = np.ascontiguousarray(x[a])
-        state = np.empty(k, np.int64)
+        state, nd = np.empty(k, np.int64), np.empty(k)
         with np.errstate(all="ignore"):
             _ke.edge_step_batch(SA, gA, dgA, SB, np.ascontiguousarray(member[a]), c1[a], s1[a], xa, d, M2, h, tol,
-                                _RCOND, state)
-        x[a] = xa
+                                _RCOND, state, nd)
+        x[a], ndot[a] = xa, nd
         conv[a[state == 1]] = True
         active[a[state != 0]] = False
-    return conv
+    return conv, ndot
 
 
 def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30):
@@ -121,22 +137,36 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
     -------
     x : (m, 5) float
     converged : (m,) bool
+    ndot : (m,) float
+        n1 . n2 of the fixed-frame unit normals at x (about -1 at a contact).
     """
     phi1_eff = np.asarray(phi1_eff, float).reshape(-1)
     x = np.array(x0, float, order="C").reshape(-1, 5)
     member = np.ascontiguousarray(member, np.int64)
     edge = np.ascontiguousarray(edge, np.int64)
     if len(x) == 0:
-        return x, np.zeros(0, bool)
+        return x, np.zeros(0, bool), np.zeros(0)
     c1, s1 = np.cos(phi1_eff), np.sin(phi1_eff)
     b1, b2 = _boundary(prob.pinion), _boundary(prob.gear)
     if prob._jets is not None and b1 is not None and b2 is not None:
         (k1, p1), (k2, p2) = prob._jets
         d, M2, _ = prob._const
-        conv, _ = _ke.edge_newton_jets(k1, p1, b1[0], b1[1], k2, p2, b2[0], b2[1], c1, s1, x, member, edge, d, M2,
-                                       _H_TAU, tol, max_iter, _RCOND)
-        return x, conv
-    return x, _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter)
+        conv, ndot, _ = _ke.edge_newton_jets(k1, p1, b1[0], b1[1], _shares(k1, p1, b1), k2, p2, b2[0], b2[1],
+                                             _shares(k2, p2, b2), c1, s1, x, member, edge, d, M2, _H_TAU, tol,
+                                             max_iter, _RCOND)
+        return x, conv, ndot
+    conv, ndot = _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter)
+    return x, conv, ndot
+
+
+def _best_of_others(te):
+    """For every entry of ``te (n, P)`` the largest value of the other entries of its row (-inf for P = 1)."""
+    n, P = te.shape
+    if P == 1:
+        return np.full((n, 1), -np.inf)
+    top = np.sort(te, axis=1)
+    first = np.argmax(te, axis=1)
+    return np.where(np.arange(P)[None, :] == first[:, None], top[:, -2:-1], top[:, -1:])
 
 
 def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_tie=1e-11):
@@ -198,23 +228,19 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         if not len(ii):
             return np.zeros(0, bool)
         phi_eff = phi1[ii] + pairs[jj] * T1
-        xs, conv = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
+        xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
         ok = conv.copy()
-        with np.errstate(invalid="ignore"):
-            g1 = np.asarray(prob.pinion.boundary_margins(xs[:, 0:2]), float)
-            g2 = np.asarray(prob.gear.boundary_margins(xs[:, 2:4]), float)
         tolm = 1e-9
-        for m, g in ((0, g1), (1, g2)):
+        for m in (0, 1):
             s = mem == m
-            gg = g[s].copy()
+            if not s.any():
+                continue
+            gg = _all_margins(surfs[m], xs[s, 2 * m:2 * m + 2])
             gg[np.arange(s.sum()), ee[s]] = np.inf  # the edge's own margin is 0 by construction
             ok[s] &= np.all(np.nan_to_num(gg, nan=-1.0) >= -tolm, axis=1)
         ok &= np.where(mem == 0, surface_contains(prob.gear, xs[:, 2:4]), surface_contains(prob.pinion, xs[:, 0:2]))
-        _, n1 = prob.pinion.evaluate(xs[:, 0:2])
-        _, n2 = prob.gear.evaluate(xs[:, 2:4])
-        R1, R2, _, _ = prob.pose(phi_eff, xs[:, 4])
         with np.errstate(invalid="ignore"):
-            ok &= np.einsum("mi,mi->m", np.einsum("mij,mj->mi", R1, n1), np.einsum("mij,mj->mi", R2, n2)) < -0.5
+            ok &= ndot < -0.5
             te = te_of(xs[:, 4], ii, jj)
             ok &= np.abs(te) < np.pi / prob.z2
         new = np.zeros(len(ii), bool)
@@ -232,14 +258,12 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     te_phys = np.where(phys, te_surface, -np.inf)
     # an edge contact trails the extended surfaces' contact beyond that edge (it is a touch of a part of the same
     # flank): pairs whose extended contact trails the best real contact of another pair cannot lead, are not solved
-    best_other = np.array([[np.max(np.delete(te_phys[i], j), initial=-np.inf) for j in range(P)] for i in range(n)])
+    best_other = _best_of_others(te_phys)
     ii, jj = np.nonzero((status == 2) & ~(te_surface < best_other - te_tie))  # ContactStatus.EDGE
     mate = {"top": ("fillet", "root"), "fillet": ("top",), "root": ("top",)}
     I, Jp, M, E = [], [], [], []
     if ii.size:
-        with np.errstate(invalid="ignore"):
-            g = [np.asarray(surfs[0].boundary_margins(x[ii, jj, 0:2]), float),
-                 np.asarray(surfs[1].boundary_margins(x[ii, jj, 2:4]), float)]
+        g = [_all_margins(surfs[0], x[ii, jj, 0:2]), _all_margins(surfs[1], x[ii, jj, 2:4])]
         for a in range(ii.size):
             want = set()
             for m in (0, 1):
@@ -259,24 +283,32 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     # 1b. a pair whose surface solve is lost altogether next to a position where it touches on the real flanks: the
     # boundary nearest that contact on each member (and the mate's boundary that meets it) is tried from there
     seeds = {}
-    for i, j in zip(*np.nonzero(phys)):
-        for d in (-1, 1):
-            k = int(i + d)
-            if not (0 <= k < n) or phys[k, j] or (k, int(j)) in label:
+    # real contacts next to a position of the same pair that has none (d = -1: the one before is lost, +1: after)
+    lost = np.zeros((2, n, P), bool)
+    lost[0, 1:] = phys[1:] & ~phys[:-1]
+    lost[1, :-1] = phys[:-1] & ~phys[1:]
+    near = lost.any(axis=0)
+    g_phys = [np.full((n, P, len(names[m])), np.nan) for m in (0, 1)]
+    if near.any():
+        for m in (0, 1):
+            g_phys[m][near] = _all_margins(surfs[m], x[near][:, 2 * m:2 * m + 2])
+    dd, ii, jj = np.nonzero(lost)
+    for i, j, d in sorted(zip(ii.tolist(), jj.tolist(), (2 * dd - 1).tolist())):  # the order of (i, j, d)
+        k = i + d
+        if (k, j) in label:
+            continue
+        x0 = x[i, j].copy()
+        x0[4] -= prob.ratio * (phi1[k] - phi1[i])
+        for m in (0, 1):
+            gm = g_phys[m][i, j]
+            usable = [e for e, nm in enumerate(names[m]) if nm != "generated" and np.isfinite(gm[e])]
+            if not usable:
                 continue
-            x0 = x[i, j].copy()
-            x0[4] -= prob.ratio * (phi1[k] - phi1[i])
-            for m in (0, 1):
-                with np.errstate(invalid="ignore"):
-                    gm = np.asarray(surfs[m].boundary_margins(x[i, j][None, 2 * m:2 * m + 2]), float)[0]
-                usable = [e for e, nm in enumerate(names[m]) if nm != "generated" and np.isfinite(gm[e])]
-                if not usable:
-                    continue
-                e = min(usable, key=lambda e: gm[e])
-                seeds.setdefault((k, int(j), m, e), x0)
-                for other in mate.get(names[m][e], ()):
-                    if other in names[1 - m]:
-                        seeds.setdefault((k, int(j), 1 - m, names[1 - m].index(other)), x0)
+            e = min(usable, key=lambda e: gm[e])
+            seeds.setdefault((k, j, m, e), x0)
+            for other in mate.get(names[m][e], ()):
+                if other in names[1 - m]:
+                    seeds.setdefault((k, j, 1 - m, names[1 - m].index(other)), x0)
     if seeds:
         keys = list(seeds)
         try_solve(np.array([q[0] for q in keys]), np.array([q[1] for q in keys]), np.array([q[2] for q in keys]),
@@ -286,7 +318,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     # lost there altogether), from the neighbour's edge solution
     def leads(i, j):
         """Pair j's edge contact at position i leads the surface contacts of the other pairs there."""
-        return te_edge[i, j] >= np.max(np.delete(te_phys[i], j), initial=-np.inf)
+        return te_edge[i, j] >= best_other[i, j]
 
     front = {key for key in label if leads(*key)}
     while front:

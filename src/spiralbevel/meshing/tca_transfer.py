@@ -30,7 +30,7 @@ def _te_at(prob, phi, pair_k, kind, x0, te_of_phi, tol):
         x[s], ok[s] = xs, conv
     e = ~s
     if e.any():
-        xe, conv = solve_edge_contacts(prob, phi_eff[e], x[e], kind[e] % 2, kind[e] // 2, tol=tol)
+        xe, conv, _ = solve_edge_contacts(prob, phi_eff[e], x[e], kind[e] % 2, kind[e] // 2, tol=tol)
         x[e], ok[e] = xe, conv
     te = np.where(ok, te_of_phi(x[:, 4], pair_k, phi), np.nan)
     return te, x
