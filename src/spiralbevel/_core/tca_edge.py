@@ -11,8 +11,9 @@ equations
 (t_A the unit tangent of the boundary curve, n_B the fixed-frame unit normal of B: tangency of the curve to B, i.e.
 the gear rotation is stationary along the curve). The Jacobian is analytic from the first-order surface jets
 (:mod:`spiralbevel._core.jets`) and the analytic margin gradients of :func:`margins`, except the q_A-columns of the
-tangency row, which need second derivatives of r_A and g: there d(tau)/dq_A is a central difference of the analytic
-tau at q_A +- h e_j (the residual stays exact; the Jacobian only steers Newton).
+tangency row, which need second derivatives of r_A and g: there d(tau)/dq_A is a forward difference of the analytic
+tau at q_A + h e_j (the residual stays exact; the Jacobian only steers Newton, and an error of order h in it leaves the
+convergence quadratic down to round-off).
 
 Margin kinds (a surface exposes ``boundary_jet = (kind, prm)``; the margins are ordered as its ``boundary_names``):
 
@@ -156,10 +157,10 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J):
 
     Parameters
     ----------
-    SA : (5, 3, 6) float
-        Jet of member A at q_A, q_A + h e_0, q_A - h e_0, q_A + h e_1, q_A - h e_1.
-    gA, dgA : (5,) float, (5, 2) float
-        Margin of A's boundary and its gradient at the same five points.
+    SA : (3, 3, 6) float
+        Jet of member A at q_A, q_A + h e_0, q_A + h e_1.
+    gA, dgA : (3,) float, (3, 2) float
+        Margin of A's boundary and its gradient at the same three points.
     SB : (3, 6) float
         Jet of member B at q_B.
     member : int
@@ -170,7 +171,7 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J):
     d, M2 :
         Assembly constants (:mod:`spiralbevel._core.tca_newton`).
     h : float
-        Step of the central difference of tau.
+        Step of the forward difference of tau.
 
     Returns
     -------
@@ -219,10 +220,9 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J):
     dv = np.empty(3)
     dtf = np.empty(3)
     dta = np.empty(3)
-    for j in range(2):  # q_A: d(tau)/dq_j by a central difference of the analytic tau
-        p, m = 1 + 2 * j, 2 + 2 * j
+    for j in range(2):  # q_A: d(tau)/dq_j by a forward difference of the analytic tau
         for i in range(3):
-            dv[i] = (_tau(SA[p], dgA[p, 0], dgA[p, 1], i) - _tau(SA[m], dgA[m, 0], dgA[m, 1], i)) / (2.0 * h)
+            dv[i] = (_tau(SA[1 + j], dgA[1 + j, 0], dgA[1 + j, 1], i) - v[i]) / h
         _to_fixed(member, dv, c1, s1, c2, s2, M2, dtf, dta)
         tt = tf[0] * dtf[0] + tf[1] * dtf[1] + tf[2] * dtf[2]
         acc = 0.0
@@ -260,12 +260,12 @@ def edge_update(F, J, x, tol, rcond):
 
 @kernel
 def _jet_points(kind, prm, mkind, mprm, share, e, q0, q1, h, SA, gA, dgA, Sm, gm, dgm):
-    """Jet of member A and margin e (value, gradient) at q_A and q_A +- h e_j into ``SA (5, 3, 6)``, ``gA (5,)``,
-    ``dgA (5, 2)`` (``Sm``, ``gm``, ``dgm`` scratch). ``share``: the margins evaluate A's own jet (a generated flank:
+    """Jet of member A and margin e (value, gradient) at q_A and q_A + h e_j into ``SA (3, 3, 6)``, ``gA (3,)``,
+    ``dgA (3, 2)`` (``Sm``, ``gm``, ``dgm`` scratch). ``share``: the margins evaluate A's own jet (a generated flank:
     the blade jet of the margins is A's jet, written straight into SA, not evaluated twice)."""
-    for k in range(5):
-        a = q0 + (h if k == 1 else (-h if k == 2 else 0.0))
-        b = q1 + (h if k == 3 else (-h if k == 4 else 0.0))
+    for k in range(3):
+        a = q0 + (h if k == 1 else 0.0)
+        b = q1 + (h if k == 2 else 0.0)
         if share:
             margins(mkind, mprm, a, b, SA[k], gm, dgm)
         else:
@@ -293,10 +293,10 @@ def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c
     m = x.shape[0]
     conv = np.zeros(m, np.bool_)
     ndot = np.empty(m)
-    SA = np.empty((5, 3, 6))
+    SA = np.empty((3, 3, 6))
     SB = np.empty((3, 6))
-    gA = np.empty(5)
-    dgA = np.empty((5, 2))
+    gA = np.empty(3)
+    dgA = np.empty((3, 2))
     Sm = np.empty((3, 6))
     gm = np.empty(N_MARGINS)
     dgm = np.empty((N_MARGINS, 2))
@@ -324,7 +324,7 @@ def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c
 @kernel
 def edge_step_batch(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, tol, rcond, state, ndot):
     """One iteration of the edge Newton for surfaces evaluated by the caller: for every row, :func:`edge_assemble`
-    from ``SA (m, 5, 3, 6)``, ``gA (m, 5)``, ``dgA (m, 5, 2)``, ``SB (m, 3, 6)`` (its n1 . n2 into ``ndot (m,)``),
+    from ``SA (m, 3, 3, 6)``, ``gA (m, 3)``, ``dgA (m, 3, 2)``, ``SB (m, 3, 6)`` (its n1 . n2 into ``ndot (m,)``),
     then :func:`edge_update` of ``x (m, 5)`` in place; ``state (m,)`` receives its result (1 converged, -1 failed,
     0 stepped)."""
     F = np.empty(5)

@@ -14,7 +14,7 @@ surface contact solve the five equations
 
 (the same unknowns and assembly pose as the surface contact of :mod:`spiralbevel.meshing.contact_problem`). The
 Newton is compiled (:mod:`spiralbevel._core.tca_edge`: analytic Jacobian from the surface jets and the analytic
-margin gradients, a central difference of the curve tangent for its q_A-derivatives). Surfaces with compiled jets
+margin gradients, a forward difference of the curve tangent for its q_A-derivatives). Surfaces with compiled jets
 and margins (``jet``, ``boundary_jet``) run entirely in compiled code; others are evaluated by numpy between the
 compiled iterations (margins without ``boundary_jet``: ``boundary_margins`` with central differences).
 """
@@ -30,9 +30,9 @@ from .contact_surface import surface_derivatives
 
 __all__ = ["solve_edge_contacts", "edge_stage"]
 
-#: step of the central difference of the curve tangent (surface parameters), and of the margin gradient of surfaces
-#: without compiled margins
-_H_TAU = 1e-5
+#: step of the forward difference of the curve tangent (surface parameters), and of the central difference of the
+#: margin gradient of surfaces without compiled margins
+_H_TAU = 1e-7
 _H_PARAM = 1e-6
 #: rank threshold of the Newton step (:func:`spiralbevel._core.tca_newton.step`)
 _RCOND = 1e-12
@@ -81,7 +81,7 @@ def _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter):
     ndot = np.full(m, np.nan)
     active = np.ones(m, bool)
     h = _H_TAU
-    pert = np.array([[0, 0], [h, 0], [-h, 0], [0, h], [0, -h]], float)
+    pert = np.array([[0, 0], [h, 0], [0, h]], float)
     surfs = (prob.pinion, prob.gear)
     d, M2, _ = prob._const
     for _ in range(max_iter + 1):
@@ -89,18 +89,18 @@ def _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter):
         if not a.size:
             break
         k = a.size
-        SA, SB = np.empty((k, 5, 3, 6)), np.empty((k, 3, 6))
-        gA, dgA = np.empty((k, 5)), np.empty((k, 5, 2))
+        SA, SB = np.empty((k, 3, 3, 6)), np.empty((k, 3, 6))
+        gA, dgA = np.empty((k, 3)), np.empty((k, 3, 2))
         for A in (0, 1):
             s = member[a] == A
             if not s.any():
                 continue
             qa = (x[a[s], 2 * A:2 * A + 2][:, None, :] + pert).reshape(-1, 2)
             with np.errstate(all="ignore"):
-                SA[s] = _b.stack_state(*surface_derivatives(surfs[A], qa)).reshape(-1, 5, 3, 6)
+                SA[s] = _b.stack_state(*surface_derivatives(surfs[A], qa)).reshape(-1, 3, 3, 6)
                 SB[s] = _b.stack_state(*surface_derivatives(surfs[1 - A], x[a[s], 2 - 2 * A:4 - 2 * A]))
-                g, dg = _margin_jets(surfs[A], qa, np.repeat(edge[a[s]], 5))
-            gA[s], dgA[s] = g.reshape(-1, 5), dg.reshape(-1, 5, 2)
+                g, dg = _margin_jets(surfs[A], qa, np.repeat(edge[a[s]], 3))
+            gA[s], dgA[s] = g.reshape(-1, 3), dg.reshape(-1, 3, 2)
         xa = np.ascontiguousarray(x[a])
         state, nd = np.empty(k, np.int64), np.empty(k)
         with np.errstate(all="ignore"):
