@@ -152,7 +152,7 @@ def _to_fixed(member, v, c1, s1, c2, s2, M2, out, out_a):
 
 
 @kernel
-def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J):
+def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J, work):
     """Edge system F (5,), J (5, 5) of one system (module docstring).
 
     Parameters
@@ -172,6 +172,10 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J):
         Assembly constants (:mod:`spiralbevel._core.tca_newton`).
     h : float
         Step of the forward difference of tau.
+    F, J : (5,), (5, 5) float
+        Output.
+    work : (13, 6) float
+        Scratch (no allocation per call): fixed-frame pinion data, gear data and its a2-cross, vectors.
 
     Returns
     -------
@@ -180,20 +184,21 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J):
     """
     S1 = SA[0] if member == 0 else SB
     S2 = SB if member == 0 else SA[0]
-    E0 = np.zeros((2, 3))
-    S1f = np.empty((3, 6))
-    Q = np.empty((6, 6))
+    S1f = work[0:3]
+    Q = work[3:9]
+    E0 = work[9:11, 0:3]
+    E0[:, :] = 0.0
     aval = 0.0
     assemble(S1, S2, c1, s1, x, d, M2, 1.0, E0, -1, aval, F, J, S1f, Q)  # rows 0-2: the point coincidence
     c2, s2 = math.cos(x[4]), math.sin(x[4])
     ia = 0 if member == 0 else 2  # columns of q_A
     ib = 2 if member == 0 else 0  # columns of q_B
-    nB = np.empty(3)
+    nB = work[11, 0:3]
+    v = work[9, 0:3]
+    tf = work[10, 0:3]
+    ta = work[11, 3:6]
     for i in range(3):
         nB[i] = Q[i, 1] if member == 0 else S1f[i, 1]
-    v = np.empty(3)
-    tf = np.empty(3)
-    ta = np.empty(3)
     for i in range(3):
         v[i] = _tau(SA[0], dgA[0, 0], dgA[0, 1], i)
     _to_fixed(member, v, c1, s1, c2, s2, M2, tf, ta)
@@ -217,9 +222,9 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J):
     for i in range(3):  # phi2 turns the gear: B's normal (A = pinion) or A's tangent (A = gear)
         acc += Q[3 + i, 1] * tf[i] if member == 0 else nB[i] * ta[i]
     J[4, 4] = acc
-    dv = np.empty(3)
-    dtf = np.empty(3)
-    dta = np.empty(3)
+    dv = work[9, 3:6]
+    dtf = work[10, 3:6]
+    dta = work[12, 0:3]
     for j in range(2):  # q_A: d(tau)/dq_j by a forward difference of the analytic tau
         for i in range(3):
             dv[i] = (_tau(SA[1 + j], dgA[1 + j, 0], dgA[1 + j, 1], i) - v[i]) / h
@@ -302,6 +307,7 @@ def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c
     dgm = np.empty((N_MARGINS, 2))
     F = np.empty(5)
     J = np.empty((5, 5))
+    work = np.empty((13, 6))
     iters = 0
     for i in range(m):
         A = member[i]
@@ -312,7 +318,7 @@ def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c
             else:
                 _jet_points(kind2, p2, mk2, mp2, share2, edge[i], x[i, 2], x[i, 3], h, SA, gA, dgA, Sm, gm, dgm)
                 surface_jet(kind1, p1, x[i, 0], x[i, 1], SB)
-            ndot[i] = edge_assemble(SA, gA, dgA, SB, A, c1[i], s1[i], x[i], d, M2, h, F, J)
+            ndot[i] = edge_assemble(SA, gA, dgA, SB, A, c1[i], s1[i], x[i], d, M2, h, F, J, work)
             r = edge_update(F, J, x[i], tol, rcond)
             if r != 0 or it == max_iter:
                 conv[i] = r == 1
@@ -329,6 +335,7 @@ def edge_step_batch(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, tol, rcond, st
     0 stepped)."""
     F = np.empty(5)
     J = np.empty((5, 5))
+    work = np.empty((13, 6))
     for i in range(x.shape[0]):
-        ndot[i] = edge_assemble(SA[i], gA[i], dgA[i], SB[i], member[i], c1[i], s1[i], x[i], d, M2, h, F, J)
+        ndot[i] = edge_assemble(SA[i], gA[i], dgA[i], SB[i], member[i], c1[i], s1[i], x[i], d, M2, h, F, J, work)
         state[i] = edge_update(F, J, x[i], tol, rcond)
