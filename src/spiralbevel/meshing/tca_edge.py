@@ -237,7 +237,8 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
                 continue
             gg = _all_margins(surfs[m], xs[s, 2 * m:2 * m + 2])
             gg[np.arange(s.sum()), ee[s]] = np.inf  # the edge's own margin is 0 by construction
-            ok[s] &= np.all(np.nan_to_num(gg, nan=-1.0) >= -tolm, axis=1)
+            with np.errstate(invalid="ignore"):
+                ok[s] &= np.all(gg >= -tolm, axis=1)  # NaN (no surface) fails
         ok &= np.where(mem == 0, surface_contains(prob.gear, xs[:, 2:4]), surface_contains(prob.pinion, xs[:, 0:2]))
         with np.errstate(invalid="ignore"):
             ok &= ndot < -0.5
