@@ -85,7 +85,7 @@ def test_compiled_margins_match_the_surfaces(case):
         fin = np.isfinite(ref)
         assert np.array_equal(fin, np.isfinite(g))
         assert np.max(np.abs(g[fin] - ref[fin])) < 1e-12 * max(1.0, np.max(np.abs(ref[fin])))
-        dref = _grad4(lambda p: _reference_margins(base, p), q, 1e-3)
+        dref = _grad4(lambda p, b=base: _reference_margins(b, p), q, 1e-3)
         ok = fin.all(axis=1)
         assert np.max(np.abs(dg[ok] - dref[ok])) < 1e-8 * max(1.0, np.max(np.abs(dref[ok])))
 
@@ -163,7 +163,8 @@ def test_edge_newton_matches_per_point_scipy(case):
         fun = _reference_residual(prob, phi[k], mem[k], edge[k])
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            sol = root(lambda y: fun(y - 1.0), x0[k] + 1.0, method="hybr", tol=1e-14)  # y = x + 1: see test_tca_engine
+            # y = x + 1: see test_tca_engine
+            sol = root(lambda y, f=fun: f(y - 1.0), x0[k] + 1.0, method="hybr", tol=1e-14)
         xr = sol.x - 1.0
         assert np.max(np.abs(fun(xr))) < 1e-9
         worst = max(worst, np.max(np.abs(xr - xs[k])))

@@ -142,8 +142,8 @@ class GeneratedSurface:
     def boundary_margins(self, params):
         """Signed margins (..., 4) of (phi, psi_c) to the flank boundaries ``boundary_names`` (>= 0 on the flank):
         R - R_i and R_e - R (mm, toe and heel), h_face(R) - h (mm, top edge) and u - u_j (mm, fillet junction).
-        Compiled (:func:`spiralbevel._core.tca_edge.margins`, the margins of edge contact); numpy for a per-system offset
-        law."""
+        Compiled (:func:`spiralbevel._core.tca_edge.margins`, the margins of edge contact); numpy for a per-system
+        offset law."""
         params = np.asarray(params, float)
         b = self.boundary_jet
         if b is not None:
