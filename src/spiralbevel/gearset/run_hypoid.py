@@ -18,9 +18,6 @@ NOT_AVAILABLE = "not available for hypoid pairs yet"
 
 #: (report section, what it is, why it is left out) of the analyses not run on a hypoid pair
 _LEFT_OUT = (
-    ("ltca", "loaded TCA with FE tooth compliance",
-     "the FE tooth segment is built with the intersecting-axes assembly; the loaded TCA with rigid teeth (contact "
-     "flattening only) is in hypoid.rigid_ltca"),
     ("cad", "STL / STEP of the teeth", "the whole-tooth builder (fillets, tooth rotation) is not checked for "
                                       "hypoid members"),
 )
@@ -28,7 +25,7 @@ _LEFT_OUT = (
 
 def hypoid_steps(spec) -> int:
     """Progress steps of :func:`run_hypoid` (the rigid loaded TCA counted: it runs when the drive TCA does)."""
-    return 5 + int(spec.output.plots)
+    return 5 + int(spec.output.plots) + int(spec.ltca is not None)
 
 
 def run_hypoid(gs, out, steps, report, summary):
@@ -98,6 +95,17 @@ def run_hypoid(gs, out, steps, report, summary):
                     f"loaded TCA drive, rigid teeth: torque {sec['torque_N_m']:.2f} N m (approach 0.00635 mm), "
                     f"loaded TE {sec['loaded_transmission_error_largest_magnitude_arcsec']:.3f} arcsec, max pressure "
                     f"{sec['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
+    if spec.ltca is not None:   # FE loaded TCA of the [ltca] section (gearset/hypoid_ltca.py)
+        from .hypoid_ltca import hypoid_ltca_report
+
+        side = spec.ltca.side
+        if side in synth:
+            hypoid_ltca_report(gs, report, summary, steps, out, spec.output.plots,
+                               outlines.get(side, (None, None))[1])
+        else:
+            report["ltca"] = {"side": side, "error": f"the {side} side's pinion flank was not synthesized "
+                                                     "(synthesis.sides): a hypoid pair meshes through its synthesis"}
+            mark_failed(summary.partial, report["ltca"], f"loaded TCA, {side} side")
     if spec.output.plots:
         with steps.step("plots"):
             for name, res in results.items():
