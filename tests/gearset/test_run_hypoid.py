@@ -74,14 +74,23 @@ def test_tca_at_the_design_te_level_with_the_bearing_inside_the_flanks(report):
         assert abs(report["machine_settings"]["pinion"][s]["settings"]["blank_offset_mm"]) > 1.0
 
 
-def test_analyses_not_taking_the_offset_are_reported_not_available(report):
-    entries = report["hypoid"]["not_available"]
+def test_every_analysis_of_the_job_takes_the_offset(report):
     assert report["hypoid"]["offset_mm"] == 15.0
-    assert {e["section"] for e in entries} == {"cad"}
-    assert all(e["status"] == "not available for hypoid pairs yet" and e["reason"] for e in entries)
+    assert report["hypoid"]["not_available"] == []
     assert report["failed_analyses"] == []
-    for key in ("cad",):
-        assert key not in report
+
+
+def test_stl_of_whole_teeth_with_the_refitted_pinion_edge_radius(report):
+    """[output] stl: the teeth and the whole members, with their generated fillets (the slot and STEP checks are in
+    tests/io/test_step_hypoid.py). The derived pinion edge radius is refitted to the generated root slot, so the
+    whole pinion keeps its fillets (no warning); the wheel keeps its derived one."""
+    cad = report["cad"]
+    assert cad["warnings"] == [] and cad["fillet_rows"] > 0
+    assert {"pinion_tooth.stl", "pinion.stl", "gear_tooth.stl", "gear.stl"} <= set(report["files"])
+    r = cad["edge_radius_mm"]
+    assert r["pinion_convex"] == r["pinion_concave"] < r["gear_convex"] == r["gear_concave"]
+    for s in ("convex", "concave"):
+        assert "fitted to the generated root slot" in report["machine_settings"]["pinion"][s]["source"]
 
 
 def test_easeoff_against_the_hypoid_conjugate(report):

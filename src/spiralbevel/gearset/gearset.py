@@ -358,8 +358,6 @@ class GearSet:
     def _cad_files(self, directory, fmt, whole_gear=True):
         from . import outputs
 
-        if self.kind == "face-milled":
-            self._no_hypoid(f"to_{fmt}()")
         out = Path(directory)
         out.mkdir(parents=True, exist_ok=True)
         tooth, teeth, cad = self._tooth_grids()
