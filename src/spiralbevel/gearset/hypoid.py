@@ -121,8 +121,8 @@ def setup_hypoid_flanks(spec, blank, with_synthesis: bool = False):
     pinion side of each synthesized pair side is then replaced by the hypoid local synthesis at the pitch point
     (the design file's ``[synthesis]``, or the developed-pair defaults with the path direction chosen to keep the
     bearing inside the flanks); a derived edge radius that the generated root slot does not hold is then refitted
-    (:func:`~spiralbevel.gearset.hypoid_fillet.fit_edge_radii`). Returns ``{(member, side): FlankSetup}`` (and ``{side name: HypoidSynthesis}`` with
-    ``with_synthesis``).
+    (:func:`~spiralbevel.gearset.hypoid_fillet.fit_edge_radii`). Returns ``{(member, side): FlankSetup}`` (and
+    ``{side name: HypoidSynthesis}`` with ``with_synthesis``).
     """
     from .hypoid_fillet import fit_edge_radii
 

@@ -106,7 +106,10 @@ def fit_edge_radii(spec, blank, setups, synthesis=None):
         if generated_root_slot(blank, setups, m).min() > 0.0:
             continue
         lo = 1e-3 * rho0
-        f = lambda r: float(generated_root_slot(blank, setups, m, r).min())   # noqa: E731
+
+        def f(r, m=m):
+            return float(generated_root_slot(blank, setups, m, r).min())
+
         try:
             if f(lo) <= 0.0:
                 continue                                # even a sharp blade does not fit: the CAD step says so
