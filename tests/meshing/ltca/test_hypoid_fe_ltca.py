@@ -48,11 +48,10 @@ def fe_dir(tmp_path_factory):
     return tmp_path_factory.mktemp("fe")
 
 
-@pytest.fixture(scope="module")
-def hypoid(fe_dir):
+def _sample2(fe_dir, hand="LH"):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+        blank = compute_blank(BlankInput(**SAMPLE2, hand1=hand))
     basic = hypoid_basic_flanks(blank)
     c, s, _, _ = basic[(Member.PINION, Side.CONCAVE)]
     syn = synthesize_hypoid_pinion(basic[(Member.GEAR, Side.CONVEX)][2], c, s, blank, eta=math.radians(40.0),
@@ -65,6 +64,11 @@ def hypoid(fe_dir):
     kw = dict(pinion_grids=pin, gear_grids=gear, sides=("concave", "convex"), cache_dir=fe_dir)
     return dict(syn=syn, c1=c1, c2=c2, tca=tca, kw=kw,
                 model=ltca_model(c1, c2, syn.kinematics, tca, grid=(15, 5), **kw))
+
+
+@pytest.fixture(scope="module")
+def hypoid(fe_dir):
+    return _sample2(fe_dir)
 
 
 def test_zero_offset_through_the_hypoid_path_is_the_spiral_bevel_fe_ltca(fe_dir):
@@ -169,3 +173,25 @@ def test_hertz_at_a_single_pair_position(hypoid):
     r = one.run(2e5, approach_target=None)
     p0, _ = hertz_peak_pressure(tca.relative_curvatures[i], r.pair_force[0, j], contact_modulus())
     assert abs(r.max_pressure[0] / p0 - 1.0) < 0.05
+
+
+def test_mirror_of_hands(hypoid, fe_dir):
+    """The right-hand pinion and left-hand wheel (E = +a): the mirror image, run backwards (positions phi1 -> -phi1,
+    pairs -1 <-> +1). With rigid teeth the loaded cycle mirrors to round-off; with FE teeth to the FE discretization,
+    since the mirrored tooth's tetrahedra are not the mirror images of the original's (each hexahedron is split along
+    its main diagonal in lattice order). Measured: rigid 4e-11 arcsec, 9e-12 relative pressure, 4e-13 load share;
+    FE 0.30 arcsec (1 %) in the loaded TE, 0.56 % in the peak pressure, 0.0034 in the load share."""
+    rh = _sample2(fe_dir, "RH")
+    lh = hypoid
+    assert rh["syn"].kinematics.offset == -lh["syn"].kinematics.offset != 0.0
+    T = 2e5
+    for rigid, tol_te, tol_p, tol_share in ((True, 1e-9, 1e-10, 1e-11), (False, 0.5, 0.01, 0.005)):
+        res = []
+        for h in (lh, rh):
+            m = (ltca_model(h["c1"], h["c2"], h["syn"].kinematics, h["tca"], rigid=True, grid=(15, 5)) if rigid
+                 else h["model"])
+            res.append(m.run(T, approach_target=None))
+        a, b = res
+        np.testing.assert_allclose(b.te_loaded[::-1], a.te_loaded, rtol=0, atol=tol_te)
+        np.testing.assert_allclose(b.max_pressure[::-1], a.max_pressure, rtol=tol_p)
+        np.testing.assert_allclose(b.load_share[::-1, ::-1], a.load_share, rtol=0, atol=tol_share)
