@@ -138,3 +138,14 @@ def test_misalignment_sensitivity_on_top_of_the_offset(report):
         # a 0.05 mm / 0.05 deg misalignment moves the bearing by a fraction of the face width (30 mm), not off it
         assert abs(c["contact_shift_along_face_mm"]) < 10.0 and abs(c["contact_shift_along_profile_mm"]) < 3.0, case
         assert c["peak_to_peak_arcsec"] > 0, case
+
+
+def test_rating_section_of_the_hypoid(report):
+    # ISO 10300 Method B1 with the hypoid branch (its figures: tests/rating/test_hypoid_sample2.py): the two mean
+    # spiral angles enter the virtual gear, the offset its face width, and the given Z_Hyp the pitting limit
+    r = report["rating"]
+    assert r["beta_v_deg"] == pytest.approx(0.5 * (report["blank"]["pinion"]["beta_m1_deg"]
+                                                   + report["blank"]["gear"]["beta_m2_deg"]), rel=1e-12)
+    assert r["Z_Hyp"] == 0.952
+    assert r["b_veff_mm"] < 0.85 * report["blank"]["gear"]["b2_mm"]
+    assert all(r[k] > 0.5 for k in ("S_H", "S_F1", "S_F2"))
