@@ -37,7 +37,8 @@ def contact_line_layout(v: dict) -> dict:
     (face end, tip boundary) farthest from the centre; the other pair of corners lies at
     (g_valpha - b_veff (tan(gamma) + tan(beta_vb))) cos(beta_vb) / 2, never farther. For eps_vbeta >= 1 the middle
     line runs through the centre (f_m = 0) and f_t,r = +-p_vet cos(beta_vb); for eps_vbeta < 1 all three lines are
-    shifted by -X, X = p_vet (1 - eps_valpha/2) cos(beta_vb) (1 - eps_vbeta), which vanishes at eps_vbeta = 1 (continuous).
+    shifted by -X, X = p_vet (1 - eps_valpha/2) cos(beta_vb) (1 - eps_vbeta), which vanishes at eps_vbeta = 1
+    (continuous).
     """
     cb = math.cos(v["beta_vb"])
     tg = math.tan(v.get("gamma", 0.0)) + math.tan(v["beta_vb"])
