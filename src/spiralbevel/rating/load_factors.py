@@ -85,6 +85,7 @@ def dynamic_factor(g: BlankData, v: dict, F_mt1: float, K_A: float, n1: float, f
     v : dict
         Virtual gears (:func:`~spiralbevel.rating.virtual.virtual_gears`).
     F_mt1 : float, N
+        Tangential force of the virtual gear, F_vmt (= F_mt1 without offset).
     K_A : float
     n1 : float, 1/min
     f_p_eff : float, um
