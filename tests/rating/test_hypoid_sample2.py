@@ -100,3 +100,23 @@ def test_general_forms_reduce_to_the_spiral_bevel_ones():
     # and the normal force of the pinion's drive flank equals the virtual gear's
     assert f["F_mt1"] / (math.cos(g.alpha_nD) * math.cos(g.beta_m1)) == pytest.approx(
         f0["F_vmt"] / (math.cos(v0["alpha_vet"]) * math.cos(v0["beta_vb"])), rel=1e-12)
+
+
+@pytest.mark.parametrize("value", [0.0, 1.2, float("nan")])
+def test_bad_hypoid_factor_names_the_key(tmp_path, value):
+    from typer.testing import CliRunner
+
+    from spiralbevel.cli import app
+    from spiralbevel.errors import DesignError
+
+    with pytest.raises(DesignError, match="Z_Hyp"):
+        RatingInput(**dict(INPUT, Z_Hyp=value))
+    if math.isfinite(value):
+        from _hypoid_sample2 import SAMPLE2_TOML
+
+        f = tmp_path / "hypoid.toml"
+        f.write_text(SAMPLE2_TOML + "\n[rating]\npinion_torque = 250.0\npinion_speed = 1200.0\nsigma_Hlim = 1500.0\n"
+                     f"sigma_Flim = 480.0\noil_viscosity = 150.0\naccuracy_grade = 6\nhypoid_factor = {value}\n")
+        res = CliRunner().invoke(app, ["rate", str(f)])
+        assert res.exit_code == 2 and "rating.hypoid_factor" in " ".join(res.output.split()), res.output
+        assert "Traceback" not in res.output
