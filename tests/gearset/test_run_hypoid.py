@@ -32,14 +32,17 @@ def report(tmp_path_factory):
     assert res.exit_code == 0, res.output
     assert "Traceback" not in res.output
     assert (out / "report.html").is_file()
-    return json.loads((out / "report.json").read_text())
+    report = json.loads((out / "report.json").read_text())
+    report["_html"] = (out / "report.html").read_text(encoding="utf-8")
+    return report
 
 
 def test_report_matches_the_schema(report):
     jsonschema = pytest.importorskip("jsonschema")
     from spiralbevel.io.report import report_schema
 
-    jsonschema.validate(report, report_schema(), cls=jsonschema.Draft202012Validator)
+    jsonschema.validate({k: v for k, v in report.items() if k != "_html"}, report_schema(),
+                        cls=jsonschema.Draft202012Validator)
     assert "Method 1" in report["blank"]["method"]
 
 
@@ -162,3 +165,16 @@ def test_fe_loaded_tca_at_the_stated_torque(report):
         rigid["loaded_transmission_error_largest_magnitude_arcsec"]
     assert 0 < lt["max_contact_pressure_N_per_mm2"] < 5000.0
     assert lt["positions_with_two_pairs_loaded"] > 0
+
+
+def test_rating_section_of_the_hypoid(report):
+    # ISO 10300 Method B1 with the hypoid branch (its figures: tests/rating/test_hypoid_sample2.py): the two mean
+    # spiral angles enter the virtual gear, the offset its face width, and the given Z_Hyp the pitting limit
+    r = report["rating"]
+    assert r["beta_v_deg"] == pytest.approx(0.5 * (report["blank"]["pinion"]["beta_m1_deg"]
+                                                   + report["blank"]["gear"]["beta_m2_deg"]), rel=1e-12)
+    assert r["Z_Hyp"] == 0.952
+    assert r["b_veff_mm"] < 0.85 * report["blank"]["gear"]["b2_mm"]
+    assert all(r[k] > 0.5 for k in ("S_H", "S_F1", "S_F2"))
+    # report.html shows the rating (its "Loaded TCA and rating" section, rendered from the keys)
+    assert "Loaded TCA and rating" in report["_html"] and "Z_Hyp" in report["_html"]

@@ -1,7 +1,8 @@
 """Face-milled hypoid designs in the job: the four flanks of a hypoid pair (basic settings at each member's mean cone
 distance, local synthesis of the pinion in the crossed-axes frame), and the hypoid pair of one side phased for meshing
-with the offset kinematics. Used by :class:`~spiralbevel.gearset.GearSet` (``spiralbevel run``, ``machine``); the
-commands that do not handle the offset yet stop on a hypoid (``gearset.blank.require_no_offset``)."""
+with the offset kinematics. Used by :class:`~spiralbevel.gearset.GearSet` (``spiralbevel run``, ``machine``) and by
+``spiralbevel correct`` and ``sweep`` (``job.correction.flank_setups``, ``job.sweep_hypoid``); the paths that still
+assemble spiral bevel flanks only stop on a hypoid (``gearset.blank.require_no_offset``)."""
 
 from __future__ import annotations
 
