@@ -58,7 +58,7 @@ def _box_generated(surface):
 def _box_formate(surface):
     """(u, theta) box of the Formate flank: flank points located over face width and depth, widened by 2 %."""
     ol = surface.flank.outline
-    q = np.array([surface.flank.locate(*ol.axial_radius(R, h))
+    q = np.array([surface.flank.locate_params(*ol.axial_radius(R, h))
                   for R in np.linspace(ol.Ri, ol.Re, 5)
                   for h in np.linspace(0.8 * float(ol.h_root(R)), float(ol.h_face(R)), 5)])
     lo, hi = q.min(0), q.max(0)
@@ -76,8 +76,8 @@ def test_formate_surface_is_the_formate_flank(formate_pair):
                   [0, 0, 1]])
     assert np.allclose(r, R @ mp.point, atol=1e-12) and np.allclose(n, R @ mp.normal, atol=1e-14)
     ol = fl.outline
-    heel = fl.locate(*ol.axial_radius(ol.Re, 0.0))
-    top = fl.locate(*ol.axial_radius(ol.Rm, float(ol.h_face(ol.Rm))))
+    heel = fl.locate_params(*ol.axial_radius(ol.Re, 0.0))
+    top = fl.locate_params(*ol.axial_radius(ol.Rm, float(ol.h_face(ol.Rm))))
     assert abs(c2.boundary_margins(heel)[1]) < 1e-9 and abs(c2.boundary_margins(top)[2]) < 1e-9
     assert c2.contains(c2.reference_params)
 

@@ -40,6 +40,11 @@ class FormateSurface:
         self.mean_point = mp
         self._u_j = flank.cutter.fillet_range[1]
 
+    @staticmethod
+    def chart_params(grid):
+        """The surface parameters (u, theta) of the points of a ``FlankPoints`` grid of the flank."""
+        return grid.u, grid.theta
+
     def evaluate(self, params):
         """Points (..., 3) mm and outward unit normals (..., 3) in the member frame at ``params (..., 2) = (u,
         theta)``."""
