@@ -81,3 +81,45 @@ def test_tca_at_the_design_te_level_with_the_bearing_inside_the_flanks(report):
         assert _te_level(t, z1) == pytest.approx(DESIGN_TE_ARCSEC, rel=TE_REL_TOL), side
         # the contact passes to the next pair before the parabola has dropped by the full level
         assert 0 < t["peak_to_peak_arcsec"] <= DESIGN_TE_ARCSEC * (1 + TE_REL_TOL), side
+
+
+def _design(**changes):
+    from spiralbevel.io.design_file import bundled_designs
+
+    text = bundled_designs()["iso23509_sample2_hypoid_formate"].read_text()
+    for old, new in changes.items():
+        assert old in text
+        text = text.replace(old, new)
+    return text
+
+
+@pytest.mark.parametrize("old, new, key", [
+    ("hypoid_offset = 15.0", "hypoid_offset = 0.0", "gear_set.gear_generation"),       # Formate needs an offset
+    ('kind = "face-milled"', 'kind = "log-spiral"', "gear_set.gear_generation"),        # and face milling
+    ('[flank]\nkind = "face-milled"', '[flank]\nkind = "face-milled"\n[face_milling.gear_convex.cutter]\n'
+     'point_radius = 60.0\nblade_angle = 20.0\npoint_width = 1.5\nedge_radius = 0.5',
+     "face_milling.gear_convex.cutter"),                                              # its cutter is solved
+])
+def test_invalid_formate_combinations_name_the_key(tmp_path, old, new, key):
+    from spiralbevel.errors import DesignError
+    from spiralbevel.gearset.gearset import GearSet
+
+    path = tmp_path / "formate.toml"
+    path.write_text(_design(**{old: new}))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with pytest.raises(DesignError) as err:
+            gs = GearSet.from_design(path)
+            gs.setups                      # the flanks are built on first use
+    assert key in str(err.value) and "formate" in str(err.value).lower()
+
+
+def test_blank_input_refuses_a_formate_gear_without_offset():
+    from spiralbevel.design.blank_input import BlankInput
+    from spiralbevel.errors import DesignError
+
+    with pytest.raises(DesignError, match="gear_generated"):
+        BlankInput(z1=13, z2=42, b=30.0, beta_m=math.radians(35.0), rc0=63.5, de2=170.0, gear_generated=False)
+    with pytest.raises(DesignError, match="gear_generated"):
+        BlankInput(z1=13, z2=42, b=30.0, beta_m=math.radians(35.0), rc0=63.5, de2=170.0, a=15.0,
+                   gear_generated="formate")

@@ -53,6 +53,10 @@ def blank_input_from_design(spec: DesignFile):
         f_alim=g.limit_pressure_angle_factor, gear_generated=g.gear_generation == "generated",
     )
     _check_method(g.blank_method, g.hypoid_offset)
+    if g.gear_generation == "formate" and g.hypoid_offset == 0.0:
+        raise DesignError.single("gear_set.gear_generation", g.gear_generation, "'generated' with "
+                                 "gear_set.hypoid_offset = 0", "-", "a Formate gear is offered on the hypoid chain "
+                                 "(ISO 23509 Method 1, hypoid_offset != 0) only")
     if g.gear_generation == "formate" and spec.flank.kind != "face-milled":
         raise DesignError.single("gear_set.gear_generation", g.gear_generation, "'generated' with flank.kind = "
                                  f"{spec.flank.kind!r}", "-", "a Formate gear is face milled: set flank.kind = "

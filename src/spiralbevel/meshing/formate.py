@@ -2,11 +2,11 @@
 locked (docs/theory/universal.md#formate-non-generated-members), and its basic settings from the blank.
 
 :class:`FormateFlank` offers what local synthesis and the reports read from a generated ``ToothFlank`` (``member``,
-``side``, ``hand``, ``outline``, ``mean_point``, ``evaluate``, ``locate``; parameters (u, theta): blade parameter mm,
-cutter angle rad). :func:`solve_formate_settings` solves the blade angle and the machine spiral angle so that the mean
-point has the design spiral and pressure angles. (The TCA of a Formate wheel is not offered yet: a Formate wheel
-needs a pinion generated with tilt or helical motion to match it beyond the mean point, which the local synthesis
-here does not solve for.)
+``side``, ``hand``, ``outline``, ``mean_point``, ``evaluate``, ``locate``, ``grid``, ``meshing_residual``; parameters
+(u, theta): blade parameter mm, cutter angle rad; ``locate_params`` gives the parameters of one point).
+:func:`solve_formate_settings` solves the blade angle and the machine spiral angle so that the mean point has the
+design spiral and pressure angles. TCA reads the flank through ``meshing.formate_surface.FormateSurface``; the pair
+developed against a Formate gear: docs/theory/hypoid.md#formate-gear.
 """
 
 from __future__ import annotations
