@@ -110,7 +110,7 @@ def test_invalid_formate_combinations_name_the_key(tmp_path, old, new, key):
         warnings.simplefilter("ignore")
         with pytest.raises(DesignError) as err:
             gs = GearSet.from_design(path)
-            gs.setups                      # the flanks are built on first use
+            _ = gs.setups                  # the flanks are built on first use
     assert key in str(err.value) and "formate" in str(err.value).lower()
 
 

@@ -188,7 +188,8 @@ class FormateFlank:
                 TH[i, :n_fillet] = th          # the edge radius at the junction's cutter angle
             x = np.array([u_j, th])
             for k, h in enumerate(np.linspace(hj, float(ol.h_face(Ri)), n_profile)):
-                x = self.locate_params(*ol.axial_radius(Ri, h), x0=x)
+                ax, rad = ol.axial_radius(Ri, h)
+                x = self.locate_params(ax, rad, x0=x)
                 U[i, n_fillet + k], TH[i, n_fillet + k] = x
         fp = self.evaluate(U, TH)
         fillet = U < u_j - 1e-12
