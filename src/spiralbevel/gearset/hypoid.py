@@ -22,8 +22,8 @@ _CHECK_POSITIONS = 41
 
 #: default synthesis against a Formate gear: semi-major axis of the contact ellipse as a fraction of the face width,
 #: and the pinion settings solved (modified roll 2C in place of the blank offset). The Formate gear's straight profile
-#: leaves a large third-order mismatch with a generated pinion: with the generated-gear default (0.15 b2) the Sample 2
-#: pair interferes (the next pair leads by up to 500 arcsec, tests/meshing/test_formate_tca.py); a shorter ellipse
+#: leaves a large third-order mismatch with a generated pinion: with a 4-6 mm ellipse and the blank offset free the
+#: Sample 2 pairs interfere (300-800 arcsec of TE, tests/meshing/test_formate_tca.py); a shorter ellipse
 #: (larger relative curvature along the path) keeps the TE parabolic at the design level
 #: (tests/gearset/test_formate_example.py)
 FORMATE_SEMI_MAJOR_FRACTION = 0.0675
