@@ -78,9 +78,10 @@ def _check_facemilled(gs, report, out):
         assert "ltca" not in {e["section"] for e in report["hypoid"]["not_available"]}
         if gs.design.ltca is not None:
             same(gs.ltca(torque=gs.design.ltca.torque).to_dict(), report["ltca"], "ltca")
-        # the ISO 10300 rating has a hypoid branch: the bundled hypoid carries a [rating] section
-        assert gs.design.rating is not None
-        same(gs.rate().to_dict(), report["rating"], "rating")
+        # the ISO 10300 rating has a hypoid branch (the generated Sample 2 carries a [rating] section)
+        assert (gs.design.rating is not None) == ("rating" in report)
+        if gs.design.rating is not None:
+            same(gs.rate().to_dict(), report["rating"], "rating")
         _check_measurement(gs, report, out)
         return
     same(gs.sensitivity().to_dict(), report["tca"]["misalignment_sensitivity"], "tca.misalignment_sensitivity")

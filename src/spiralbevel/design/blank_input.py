@@ -84,6 +84,11 @@ class BlankInput:
         (ISO 23509 B.3, ``docs/conventions.md``). 0 gives the spiral bevel pair of ISO 23509 Method 0; a != 0 the
         hypoid pair of Method 1 (Gleason), with ``beta_m`` the desired pinion mean spiral angle βΔ1 and the pinion
         face width computed (``b1`` not given).
+    gear_generated : bool
+        True (default) for a generated (rolled) gear, False for a Formate (non-generated, plunge-cut) gear, whose
+        flanks are the cutter surface (ISO 23509 Method 1 distinguishes the two). A Formate gear is offered on the
+        hypoid chain only (``a != 0``); the Method 1 dimension sheet is the same for both (see
+        ``docs/theory/universal.md``).
 
     Raises
     ------
@@ -116,6 +121,7 @@ class BlankInput:
     theta_f1: float | None = None
     theta_f2: float | None = None
     a: float = 0.0
+    gear_generated: bool = True
 
     def __post_init__(self) -> None:
         if isinstance(self.hand1, str) and not isinstance(self.hand1, Hand):
@@ -269,6 +275,11 @@ class BlankInput:
                 bad("beta_m", "beta_m > 0 for a hypoid (a != 0)", "deg", "the desired pinion spiral angle of "
                     "ISO 23509 Method 1 must be positive")
 
+        if not isinstance(self.gear_generated, bool):
+            bad("gear_generated", "True (generated gear) or False (Formate gear)", "-")
+        elif not self.gear_generated and a_ok and self.a == 0.0:
+            bad("gear_generated", "True for a = 0", "-", "a Formate (non-generated) gear is offered on the hypoid "
+                "chain (ISO 23509 Method 1, a != 0) only")
         self._check_taper(P, real_in)
 
         # cross-field: face width against the cone distance, cutter radius against the face

@@ -33,6 +33,7 @@ FIELD_PATHS = {
     "theta_a2": "gear_set.depth.gear_addendum_dedendum_angles[0]",
     "a": "gear_set.hypoid_offset",
     "f_alim": "gear_set.limit_pressure_angle_factor",
+    "gear_generated": "gear_set.gear_generation",
 }
 
 
@@ -49,9 +50,17 @@ def blank_input_from_design(spec: DesignFile):
         alpha_dC=r(g.coast_pressure_angle if g.coast_pressure_angle is not None else g.normal_pressure_angle),
         c_ham=d.mean_addendum_factor, k_d=d.depth_factor, k_c=d.clearance_factor, k_t=d.thickness_factor,
         jen=d.backlash if d.backlash > 0 else None, taper=d.taper, a=g.hypoid_offset,
-        f_alim=g.limit_pressure_angle_factor,
+        f_alim=g.limit_pressure_angle_factor, gear_generated=g.gear_generation == "generated",
     )
     _check_method(g.blank_method, g.hypoid_offset)
+    if g.gear_generation == "formate" and g.hypoid_offset == 0.0:
+        raise DesignError.single("gear_set.gear_generation", g.gear_generation, "'generated' with "
+                                 "gear_set.hypoid_offset = 0", "-", "a Formate gear is offered on the hypoid chain "
+                                 "(ISO 23509 Method 1, hypoid_offset != 0) only")
+    if g.gear_generation == "formate" and spec.flank.kind != "face-milled":
+        raise DesignError.single("gear_set.gear_generation", g.gear_generation, "'generated' with flank.kind = "
+                                 f"{spec.flank.kind!r}", "-", "a Formate gear is face milled: set flank.kind = "
+                                 "'face-milled'")
     if d.taper == "given":
         if d.dedendum_angles is not None:
             kw.update(theta_f1=r(d.dedendum_angles[0]), theta_f2=r(d.dedendum_angles[1]))

@@ -21,11 +21,41 @@ __all__ = ["hypoid_easeoff_maps", "hypoid_pair", "setup_hypoid_flanks"]
 #: positions of the TCA that checks the bearing of a synthesized hypoid pair over one mesh cycle
 _CHECK_POSITIONS = 41
 
+#: default synthesis against a Formate gear: semi-major axis of the contact ellipse as a fraction of the face width,
+#: and the pinion settings solved (modified roll 2C in place of the blank offset). The Formate gear's straight profile
+#: leaves a large third-order mismatch with a generated pinion: with a 4-6 mm ellipse and the blank offset free the
+#: Sample 2 pairs interfere (300-800 arcsec of TE, tests/meshing/test_formate_tca.py); a shorter ellipse
+#: (larger relative curvature along the path) keeps the TE parabolic at the design level
+#: (tests/gearset/test_formate_example.py)
+FORMATE_SEMI_MAJOR_FRACTION = 0.0675
+FORMATE_FREE = "modified-roll"
+
+
+def is_formate(spec) -> bool:
+    """True when the design's gear is Formate (``gear_set.gear_generation = "formate"``)."""
+    return getattr(spec.gear_set, "gear_generation", "generated") == "formate"
+
+
+def _formate_gear(spec, blank, view, key, fs, side):
+    """Cutter, settings and flank of a Formate gear flank: blade angle and machine spiral angle solved for the design
+    mean-point angles (``meshing.formate.solve_formate_settings``); a given cutter or machine is refused."""
+    from ..meshing.formate import solve_formate_settings
+
+    for part in ("cutter", "machine"):
+        if getattr(fs, part) is not None:
+            raise DesignError.single(f"face_milling.{key}.{part}", "given", "not given for a Formate gear", "-",
+                                     "the Formate gear's cutter and settings are solved from the blank "
+                                     "(gear_set.gear_generation = 'formate')")
+    return solve_formate_settings(blank, Member.GEAR, side, _default_cutter(spec, view, Member.GEAR, side))
+
 
 def _basic(spec, blank):
     from ..design.hypoid_member import member_blank
     from ..generation.basic_settings_solve import solve_basic_settings
     from ..generation.flank import generate_flank
+
+    from ..generation.basic_settings_solve import FlankFit
+    from ..machine.default_cutter import design_pressure_angle
 
     out = {}
     for m in MEMBERS:
@@ -34,6 +64,14 @@ def _basic(spec, blank):
             key = f"{m.value}_{s.value}"
             fs = getattr(spec.face_milling, key)
             fit = None
+            if m is Member.GEAR and is_formate(spec):
+                cutter, settings, flank = _formate_gear(spec, blank, view, key, fs, s)
+                mp = flank.mean_point()
+                fit = FlankFit(design_pressure_angle(blank, m, s), mp.pressure_angle, abs(float(blank.beta_m2)),
+                               mp.spiral_angle, flank.root_deviation(), 0)
+                out[(m, s)] = FlankSetup(m, s, cutter, settings, flank, "Formate gear: cutter surface, blade angle "
+                                         "and machine spiral angle solved for the design mean-point angles", fit)
+                continue
             try:
                 cutter = _given_cutter(fs.cutter, s) if fs.cutter is not None else _default_cutter(spec, view, m, s)
                 if fs.machine is not None:
@@ -79,6 +117,9 @@ def _synthesize(spec, blank, setups):
         raise DesignError.single("synthesis.motion_curve", sy.motion_curve, "'parabolic' for a hypoid pair", "-",
                                  "multi-point control of a hypoid pinion is not supported yet")
     default = getattr(sy, "_default", False)
+    if default and is_formate(spec):
+        sy = sy.model_copy(update=dict(semi_major_axis=FORMATE_SEMI_MAJOR_FRACTION * float(blank.b2),
+                                       free=FORMATE_FREE))
     new, results = {}, {}
     for name in sy.sides:
         s1, s2 = PAIR_SIDES[name]

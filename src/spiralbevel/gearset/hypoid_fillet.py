@@ -96,12 +96,15 @@ def fit_edge_radii(spec, blank, setups, synthesis=None):
         (derived, fitted) edge radius, mm, of each refitted member.
     """
     from .facemilled import PAIR_SIDES, SIDES, FlankSetup
+    from .hypoid import is_formate
 
     fm = spec.face_milling
     fitted = {}
     for m in (Member.PINION, Member.GEAR):
         if fm.edge_radius is not None or any(getattr(fm, f"{m.value}_{s.value}").cutter is not None for s in SIDES):
             continue                                    # a given edge radius or cutter is the user's
+        if m is Member.GEAR and is_formate(spec):
+            continue                                    # a Formate gear's slot is the cutter's own: no generated fillet
         rho0 = min(setups[(m, s)].cutter.edge_radius for s in SIDES)
         if generated_root_slot(blank, setups, m).min() > 0.0:
             continue

@@ -25,6 +25,8 @@ MACHINE_SETTING_UNITS = {
     "radial_setting": "mm", "cradle_angle": "deg", "machine_root_angle": "deg", "machine_centre_to_back": "mm",
     "sliding_base": "mm", "blank_offset": "mm", "ratio_of_roll": "-", "modified_roll": "-",
     "blank_offset_poly": "mm", "blank_offset_table": "mm",
+    # UniversalSettings.to_dict (a Formate gear)
+    "tilt": "deg", "swivel": "deg", "helical_motion": "mm", "vertical_motion": "mm", "radial_motion": "mm",
 }
 
 

@@ -73,6 +73,10 @@ class GearSetSpec(_Model):
         "Klingelnberg) are not implemented; default from hypoid_offset (0 -> 0, else 1)")
     limit_pressure_angle_factor: float = _f(0.0, ge=0.0, le=1.0, description="f_alim: share of the limit pressure "
                                             "angle taken into the generated flank angles (hypoid, ISO 23509)")
+    gear_generation: Literal["generated", "formate"] = _f(
+        "generated", description="the gear is generated (rolled) or Formate (non-generated, plunge cut: its flanks are "
+        "the cutter surface); ISO 23509 Method 1 distinguishes the two; 'formate' needs a hypoid offset and "
+        "face-milled flanks")
     depth: DepthSpec = DepthSpec()
 
     @model_validator(mode="after")

@@ -156,8 +156,20 @@ class UniversalSettings:
                     radial=self.radial_motion, helical=self.helical_motion,
                     vertical=tuple(-c for c in self.vertical_motion))
 
-    def summary_rows(self) -> list[tuple[str, str, str]]:
-        """Rows (label, value, unit) for a shop-floor summary; angles in degrees."""
+    def to_dict(self, degrees: bool = True) -> dict:
+        """Settings as a plain dict (the names of the fields); angles in degrees when ``degrees`` (I/O boundary),
+        else rad."""
+        d = asdict(self)
+        for name in ("modified_roll", "helical_motion", "vertical_motion", "radial_motion"):
+            d[name] = list(d[name])
+        if degrees:
+            for name in ("cradle_angle", "machine_root_angle", "tilt", "swivel"):
+                d[name] = math.degrees(d[name])
+        return d
+
+    def summary_rows(self, cutter=None, member=None, side=None) -> list[tuple[str, str, str]]:
+        """Rows (label, value, unit) for a shop-floor summary; angles in degrees. (``cutter``, ``member`` and
+        ``side`` are accepted as ``MachineSettings.summary_rows`` takes them, and not used.)"""
         rows = [("Process", "generated" if self.generated else "Formate (non-generated)", "")]
         for key, label, unit, ang in _LABELS:
             v = getattr(self, key)
@@ -264,7 +276,9 @@ class UniversalGenerator:
         ``theta`` (rad) placed in the member frame with the cradle at psi_c = 0 (no roll, no motions)."""
         u, theta = np.broadcast_arrays(np.asarray(u, float), np.asarray(theta, float))
         rho, z, nr, nz = self._meridian(u)
-        M = _u.chain(np.zeros(u.shape), self.up).real
+        if getattr(self, "_M0", None) is None:          # the chain at psi_c = 0, the same for every point
+            self._M0 = _u.chain(np.zeros(()), self.up).real
+        M = np.broadcast_to(self._M0, u.shape + (4, 4))
         return self._points(M, rho, z, nr, nz, u, theta, np.zeros(u.shape), np.zeros(u.shape))
 
     def _points(self, M, rho, z, nr, nz, u, theta, psi, disc):

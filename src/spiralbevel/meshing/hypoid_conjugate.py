@@ -117,7 +117,11 @@ def hypoid_easeoff(pinion, gear, kinematics, *, n_face: int = 15, n_profile: int
         return r, nn
 
     grid = gear.flank.grid(9, 5, curvature=False)         # start samples in the surface's (phi, psi_c) chart
-    conj = FlankAccess(conj_surface, (gear.cutter_angle(grid.theta, grid.psi_c).ravel(), grid.psi_c.ravel()))
+    if hasattr(gear, "chart_params"):                      # a Formate wheel: its own (u, theta) chart
+        start = tuple(v.ravel() for v in gear.chart_params(grid))
+    else:
+        start = (gear.cutter_angle(grid.theta, grid.psi_c).ravel(), grid.psi_c.ravel())
+    conj = FlankAccess(conj_surface, start)
     C, _, _, _ = conj.locate(ax_all[-1:], rad_all[-1:])
     ang = float(np.angle(np.exp(1j * (np.arctan2(C[-1, 1], C[-1, 0]) - np.arctan2(P[-1, 1], P[-1, 0])))))
     back = rot_z(-ang)

@@ -224,8 +224,11 @@ def tca_surfaces(synthesis: HypoidSynthesis):
     """Contact surfaces of the synthesized pair for ``solve_tca`` with ``synthesis.kinematics``: both flanks turned so
     that their points of M meet at M at zero roll; returns ``(pinion, gear, start)`` with ``start`` (5,) the TCA's
     starting guess at the mean contact."""
+    from ..formate import FormateFlank
+    from ..formate_surface import FormateSurface
     from ..generated_surface import GeneratedSurface
 
     c1 = GeneratedSurface(synthesis.pinion_flank, synthesis.phi1_mean)
-    c2 = GeneratedSurface(synthesis.gear_flank, synthesis.phi2_mean)
+    gear = FormateSurface if isinstance(synthesis.gear_flank, FormateFlank) else GeneratedSurface
+    c2 = gear(synthesis.gear_flank, synthesis.phi2_mean)
     return c1, c2, np.r_[c1.reference_params, c2.reference_params, 0.0]

@@ -1,0 +1,130 @@
+"""TCA of a hypoid pair with a Formate wheel (ISO 23509 Sample 2; the wheel's concave flank is the cutter surface,
+spiralbevel.meshing.formate_surface) against the brute-force oracle (tests/meshing/_contact_oracle.py).
+
+The pinion is the hypoid local synthesis against the Formate wheel with the ellipse of a generated gear (path
+direction -20 deg, 8 arcsec design TE). The pair interferes: away from the mean point the next tooth pair touches
+hundreds of arcsec ahead, first on the pinion's fillet junction, then at the corner where that boundary crosses the
+wheel's heel edge, then on the wheel's heel edge. TCA finds the surface contacts and the fillet-junction edge contact
+(the oracle agrees there); it does not solve corner contacts (two boundary curves meeting), loses the contact at the
+corner and reports the trailing pair from there on: 350-709 arcsec short of the oracle at the last four sampled
+positions. That is a known limitation of the edge stage (meshing/tca_edge.py), pinned by the strict xfail below.
+"""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from _contact_oracle import Oracle
+
+from spiralbevel.conventions import Member, Side
+from spiralbevel.design.blank import BlankInput, compute_blank
+from spiralbevel.meshing.formate import solve_formate_settings
+from spiralbevel.meshing.formate_surface import FormateSurface
+from spiralbevel.meshing.generated_surface import GeneratedSurface
+from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks
+from spiralbevel.meshing.synthesis.hypoid_local import synthesize_hypoid_pinion
+from spiralbevel.meshing.tca import solve_tca
+from spiralbevel.meshing.tca_result import ARCSEC
+from _hypoid_sample2 import SAMPLE2
+
+#: arcsec: the oracle's own accuracy on a contact it samples is ~1e-3 arcsec (zooming grids, Newton to 1e-11 mm)
+TOL_ARCSEC = 0.01
+
+
+@pytest.fixture(scope="module")
+def formate_pair():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")      # Sample 2's own face width warning
+        blank = compute_blank(BlankInput(**SAMPLE2))
+    side = Side.CONVEX                       # pinion convex against the Formate wheel's concave flank
+    _, _, gear = solve_formate_settings(blank, Member.GEAR, side.mate)
+    pc, ps, _, _ = hypoid_basic_flanks(blank)[(Member.PINION, side)]
+    res = synthesize_hypoid_pinion(gear, pc, ps, blank, side=side, eta=math.radians(-20.0), semi_major_axis=6.0,
+                                   te_magnitude=8.0 * ARCSEC)
+    c1 = GeneratedSurface(res.pinion_flank, res.phi1_mean)
+    c2 = FormateSurface(gear, res.phi2_mean)
+    tca = solve_tca(c1, c2, res.kinematics, n_positions=21, start=np.r_[c1.reference_params, c2.reference_params, 0])
+    return c1, c2, res.kinematics, tca
+
+
+def _box_generated(surface):
+    g = surface.flank.grid(31, 15, curvature=False)
+    phi = surface.cutter_angle(g.theta, g.psi_c)
+    lo, hi = np.array([phi.min(), g.psi_c.min()]), np.array([phi.max(), g.psi_c.max()])
+    d = 0.02 * (hi - lo)
+    return np.stack([lo - d, hi + d], 1)
+
+
+def _box_formate(surface):
+    """(u, theta) box of the Formate flank: flank points located over face width and depth, widened by 2 %."""
+    ol = surface.flank.outline
+    q = np.array([surface.flank.locate_params(*ol.axial_radius(R, h))
+                  for R in np.linspace(ol.Ri, ol.Re, 5)
+                  for h in np.linspace(0.8 * float(ol.h_root(R)), float(ol.h_face(R)), 5)])
+    lo, hi = q.min(0), q.max(0)
+    d = 0.02 * (hi - lo)
+    return np.stack([lo - d, hi + d], 1)
+
+
+def test_formate_surface_is_the_formate_flank(formate_pair):
+    """The TCA surface is the Formate flank: the mean point at the reference parameters, margins 0 on the outline."""
+    _, c2, _, _ = formate_pair
+    fl = c2.flank
+    mp = fl.mean_point()
+    r, n = c2.evaluate(c2.reference_params)
+    R = np.array([[math.cos(c2.rotation), -math.sin(c2.rotation), 0], [math.sin(c2.rotation), math.cos(c2.rotation), 0],
+                  [0, 0, 1]])
+    assert np.allclose(r, R @ mp.point, atol=1e-12) and np.allclose(n, R @ mp.normal, atol=1e-14)
+    ol = fl.outline
+    heel = fl.locate_params(*ol.axial_radius(ol.Re, 0.0))
+    top = fl.locate_params(*ol.axial_radius(ol.Rm, float(ol.h_face(ol.Rm))))
+    assert abs(c2.boundary_margins(heel)[1]) < 1e-9 and abs(c2.boundary_margins(top)[2]) < 1e-9
+    assert c2.contains(c2.reference_params)
+
+
+def _deviation(formate_pair, idx):
+    """TCA lead minus oracle lead (arcsec) at positions ``idx``, and the oracle."""
+    c1, c2, kin, res = formate_pair
+    o = Oracle(c1, c2, _box_generated(c1), _box_formate(c2), kin.z1, kin.z2, kin.axes())
+    P = np.asarray(res.pairs)
+    phi = res.phi1[idx][:, None] + 2 * np.pi * P / kin.z1
+    p2e, _ = o.first_touch(phi.ravel(), res.drive_sign, (-kin.z1 / kin.z2 * phi.ravel(), c1.reference_params,
+                                                         c2.reference_params))
+    p2 = p2e.reshape(phi.shape) + 2 * np.pi * P / kin.z2
+    lead = np.max(np.where(np.isfinite(p2), -res.drive_sign * p2, -np.inf), axis=1)
+    return (-res.drive_sign * res.phi2[idx] - lead) / ARCSEC, o
+
+
+def test_formate_pair_tca_matches_brute_force_up_to_the_corner(formate_pair):
+    """Up to the corner (the first 13 of 21 positions: surface contacts, then the pinion's fillet-junction edge) the
+    leading contact agrees with the oracle; the pair interferes (hundreds of arcsec of TE)."""
+    _, _, _, res = formate_pair
+    dev, _ = _deviation(formate_pair, np.arange(0, 14, 2))
+    assert np.all(np.isfinite(dev)) and np.max(np.abs(dev)) <= TOL_ARCSEC, np.round(dev, 4)
+    assert np.nanmax(res.te_arcsec) - np.nanmin(res.te_arcsec) > 200.0
+    assert any(e[2:] == ("pinion", "fillet") for e in res.edges)
+
+
+@pytest.mark.xfail(strict=True, reason="the TCA edge stage does not solve corner contacts (a pinion boundary crossing "
+                   "a gear boundary): past the fillet/heel corner it reports the trailing pair, 350-709 arcsec short "
+                   "of the oracle")
+def test_formate_pair_tca_matches_brute_force_past_the_corner(formate_pair):
+    c1, c2, kin, res = formate_pair
+    idx = np.arange(14, len(res.phi1), 2)
+    dev, o = _deviation(formate_pair, idx)
+    P = np.asarray(res.pairs)
+    # TCA never trails the oracle (it found every leading contact the oracle samples) ...
+    assert np.all(np.isfinite(dev)) and np.min(dev) >= -TOL_ARCSEC, np.round(dev, 4)
+    # ... and where it leads the oracle (a boundary maximum between the oracle's samples), the oracle's own meeting
+    # of TCA's pinion contact point with the wheel flank confirms that contact (same gear rotation, on the flank)
+    for a in np.flatnonzero(dev > TOL_ARCSEC):
+        i = idx[a]
+        j = int(res.pair[i])
+        k = int(P[j])
+        r1, _ = c1.evaluate(res.params1[i, j])
+        phi_eff = np.array([res.phi1[i] + 2 * np.pi * k / kin.z1])
+        p2_eff = res.phi2[i] - 2 * np.pi * k / kin.z2
+        q, p2m, ok = o._meet(0, r1[None], phi_eff, np.array([p2_eff]), res.params2[i, j][None])
+        assert ok[0] and abs(p2m[0] - p2_eff) / ARCSEC < 1e-6
