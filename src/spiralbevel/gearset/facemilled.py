@@ -270,6 +270,23 @@ def _synthesize_sides(sy, blank, setups, syn):
     return new, results
 
 
+#: the default synthesis keeps a pinion blade angle within this many degrees of the pinion's basic one: the seven
+#: mean-point conditions also have solutions far from the blank's settings (a 46 deg blade on a 20 deg design at a
+#: low spiral angle, where the (offset or modified-roll) set is nearly singular), which no cutter maker would grind
+DEFAULT_MAX_BLADE_CHANGE_DEG = 5.0
+
+
+def _require_near_branch(res, pin):
+    """ConvergenceError when the synthesized pinion blade angle is more than ``DEFAULT_MAX_BLADE_CHANGE_DEG`` from
+    the pinion's basic one (the fit reached a far branch)."""
+    d = math.degrees(res.pinion_cutter.blade_angle - pin.cutter.blade_angle)
+    if abs(d) > DEFAULT_MAX_BLADE_CHANGE_DEG:
+        raise ConvergenceError(f"pinion machine settings: the fit reached a far branch (blade angle "
+                               f"{math.degrees(res.pinion_cutter.blade_angle):.2f} deg, {d:+.2f} deg from the basic "
+                               f"{math.degrees(pin.cutter.blade_angle):.2f} deg; free = {res.free})",
+                               iterations=res.iterations, residual=res.residual, last=None)
+
+
 def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses):
     """The local syntheses of one pinion side at the TE level ``te`` (arcsec): the design file's path direction, or
     for the default synthesis the first of ``DEFAULT_CANDIDATES`` whose pair keeps the bearing inside both flanks
@@ -299,6 +316,8 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses):
                     approach=sy.approach, free=getattr(syn, _FREE[free]), depth=frac * mid,
                     pinion_cutter_hint=pin.cutter if hint else None,
                     pinion_settings_hint=pin.settings if hint else None)
+                if default:
+                    _require_near_branch(res, pin)
                 break
             except (ConvergenceError, GeometryError) as err:
                 # the default tries the next set of settings, then the next candidate; a given
