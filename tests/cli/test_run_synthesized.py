@@ -45,6 +45,23 @@ def test_tca_of_synthesized_pair(syn_run):
     assert a2 == pytest.approx(-3.0 / (np.pi / 23) ** 2, rel=0.05)
 
 
+def test_contact_ratio_from_tca_is_the_iso_transverse_ratio(syn_run):
+    """The pair's path leaves the profile direction by 6 deg only: one pair's contact runs from root to top about as
+    the transverse path of contact of ISO 10300-1 (eps_valpha of the virtual cylindrical gears, from the blank
+    alone; meshing/tca_checks.contact_ratio).
+
+    Tolerance: half a grid step at each end (1/40 of the pitch at the 41 TCA positions) plus 2 % of eps_valpha for
+    the virtual cylindrical gears (involutes on the back cone of the mean section, where the real bevel path leaves
+    the mean section and the depth tapers; 0.3-2 % observed on both sides at 41 and 81 positions)."""
+    _, report = syn_run
+    for name in ("drive", "coast"):
+        t = report["tca"][name]
+        assert t["positions"] == 41 and not t["contact_ratio_from_tca_is_lower_bound"]
+        eps_a = t["contact_ratio_iso10300_transverse"]
+        assert t["contact_ratio_from_tca"] == pytest.approx(eps_a, abs=1 / 40 + 0.02 * eps_a), name
+        assert eps_a < t["contact_ratio_iso10300_total"]
+
+
 def test_easeoff_is_clearance_and_measurement_grids(syn_run):
     out, report = syn_run
     e = report["easeoff"]["drive"]

@@ -243,9 +243,11 @@ class GearSet:
                                          misalignment=mis, grids=self.grids(),
                                          pair=self._hypoid_pair(side) if self.is_hypoid else None)
         if mis is None:   # the developed-pair checks, as the main job reports them
-            from .run_facemilled import tca_side_checks
+            from .run_facemilled import iso_contact_ratio, tca_side_checks
 
             section["checks"] = tca_side_checks(res, side, self.synthesis, self.blank.z1)
+            if not self.is_hypoid:
+                iso_contact_ratio(section, self.blank, side)
         return TCA(_side_name(side), res, section, outline)
 
     def sensitivity(self, side: str = "drive", positions: int | None = None):

@@ -41,6 +41,7 @@ def run_facemilled(gs, out, steps, report, summary):
         for name in ("drive", "coast"):
             mark_failed(summary.partial, report["tca"][name], f"TCA, {name} side")
             _tca_checks(report, name, tca_results.get(name), synth, blank.z1)
+            iso_contact_ratio(report["tca"][name], blank, name)
         sens, failed = attempt(summary.partial, "misalignment sensitivity", misalignment_sensitivity, blank, setups,
                                "drive", n_positions=n_pos)
         report["tca"]["misalignment_sensitivity"] = failed or sens
@@ -173,3 +174,16 @@ def _tca_checks(report, name, res, synth, z1):
     report["tca"][name]["checks"] = found
     for text in found:
         warnings.warn(text, DesignWarning, stacklevel=2)
+
+
+def iso_contact_ratio(section, blank, name):
+    """ISO 10300-1 transverse and total contact ratios of the loaded side beside the TCA's (``contact_ratio_from_tca``):
+    a bearing whose path crosses the profile spans about the transverse ratio, one turned lengthwise more, up to
+    the total ratio of the full face."""
+    from ..design.contact_ratio import contact_ratios
+
+    if "error" in section:
+        return
+    cr = contact_ratios(blank, blank.alpha_eD if name == "drive" else blank.alpha_eC)
+    section["contact_ratio_iso10300_transverse"] = cr["eps_valpha"]
+    section["contact_ratio_iso10300_total"] = cr["eps_vgamma"]

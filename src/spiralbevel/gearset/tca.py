@@ -12,6 +12,7 @@ from ..conventions import Member, Side
 from ..errors import ConvergenceError, NoContactError, SpiralBevelWarning
 from ..meshing.pair import meshing_pair
 from ..meshing.tca import solve_tca
+from ..meshing.tca_checks import contact_ratio
 from ..meshing.tca_result import ARCSEC
 
 #: fewest positions with a real-flank contact for which a side's TE curve (max, min, peak-to-peak) is reported
@@ -72,6 +73,7 @@ def tca_section(name: str, res) -> dict:
                 "positions": int(len(te)), "contact_positions": int(fin.sum()),
                 "edge_contacts": edge_contacts, "error": msg}
     edge = np.nonzero(res.edge_contact)[0]
+    ratio, lower_bound = contact_ratio(res)
     return {
         "pinion_side": s1.value, "gear_side": s2.value,
         "status": "ok" if not edge.size else "edge contact",
@@ -85,6 +87,8 @@ def tca_section(name: str, res) -> dict:
         "transfer_points_deg": [math.degrees(x) for x in np.atleast_1d(res.transfer_phi1)],
         "edge_contact_positions_deg": [math.degrees(res.phi1[i]) for i in edge],
         "semi_major_axis_mean_mm": _finite_or_none(np.max(res.semi_axes[len(te) // 2])),
+        # one pair's contact on the real flanks over the angular pitch (meshing/tca_checks.py: contact_ratio)
+        "contact_ratio_from_tca": ratio, "contact_ratio_from_tca_is_lower_bound": lower_bound,
         "pinion_rotation_deg": np.degrees(res.phi1[fin]), "transmission_error_arcsec": te[fin],
     }
 

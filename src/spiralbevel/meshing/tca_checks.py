@@ -1,4 +1,5 @@
-"""Checks on the TCA of a developed pair: the bearing inside the flanks, the TE level against the design.
+"""Checks on the TCA of a developed pair: the bearing inside the flanks, the TE level against the design, the contact
+ratio.
 
 Each check returns warnings with the reason and the design-file key to change (docs/conventions.md, "Developed-pair
 checks").
@@ -12,7 +13,8 @@ import numpy as np
 
 from .tca_result import ARCSEC
 
-__all__ = ["TE_LEVEL_TOL", "bearing_warnings", "te_level", "te_level_warnings", "tca_checks"]
+__all__ = ["TE_LEVEL_TOL", "bearing_warnings", "contact_ratio", "contact_ratio_warnings", "te_level",
+           "te_level_warnings", "tca_checks"]
 
 #: relative tolerance of the fitted parabolic TE level against the designed one (the acceptance of a developed pair:
 #: at the design TE level within 10 %)
@@ -94,4 +96,62 @@ def tca_checks(res, side: str, synthesized: bool, design_arcsec: float | None = 
     """All TCA checks of one side (:func:`bearing_warnings`, :func:`te_level_warnings`; z1 the pinion teeth)."""
     if res is None:
         return []
-    return bearing_warnings(res, side, synthesized) + (te_level_warnings(res, side, design_arcsec, z1) if z1 else [])
+    return (bearing_warnings(res, side, synthesized) + (te_level_warnings(res, side, design_arcsec, z1) if z1 else [])
+            + contact_ratio_warnings(res, side, synthesized))
+
+
+def contact_ratio_warnings(res, side: str, synthesized: bool) -> list[str]:
+    """The contact of one tooth pair ends before the next pair's begins: contact ratio of the TCA
+    (:func:`contact_ratio`) below 1."""
+    ratio, lower_bound = contact_ratio(res)
+    if lower_bound or ratio >= 1.0:
+        return []
+    key = ("lengthen synthesis.semi_major_axis or turn synthesis.path_direction toward the lengthwise direction"
+           if synthesized else f"change face_milling.pinion_{_PINION_SIDE[side]}.machine")
+    return [f"{side} side: contact ratio from the TCA {ratio:.3f} < 1 (one tooth pair leaves the flanks before the "
+            f"next one is in contact); {key}"]
+
+
+def contact_ratio(res) -> tuple[float, bool]:
+    """Contact ratio of a TCA: the pinion rotation over which one tooth pair is in contact of the real flanks,
+    divided by the angular pitch 2 pi / z1 (the TCA's cycle: its positions span phi10 - pi/z1 to phi10 + pi/z1).
+
+    Pair k of the TCA at the pinion rotation phi1 is the pair at the offset o = phi1 - phi10 + 2 pi k / z1 from its
+    own mean contact; over the pairs (-1, 0, 1) and one mesh cycle of positions the offsets cover three angular
+    pitches on a uniform grid. The span is the run of offsets around 0 at which the pair has a surface contact
+    inside both flanks (``status_pairs`` OK or LINE, whether or not it is the pair that carries: the path of
+    contact of that pair alone), each end placed half a grid step beyond the last sample inside, so the span is
+    within one grid step (2 pi / (z1 (n - 1))) of the exact one.
+
+    Returns
+    -------
+    ratio : float
+        Span / (2 pi / z1), dimensionless.
+    lower_bound : bool
+        True when the contact is still inside at an end of the analysed offsets (the span is at least ``ratio``).
+    """
+    from .tca_result import ContactStatus
+
+    phi = np.asarray(res.phi1, float) - float(res.phi1_mean)
+    T = float(phi[-1] - phi[0])
+    pairs = np.asarray(res.pairs, int)
+    off = (phi[:, None] + pairs[None, :] * T).reshape(-1)
+    sp = np.asarray(res.status_pairs).reshape(-1)
+    inside = (sp == ContactStatus.OK) | (sp == ContactStatus.LINE)
+    step = float(phi[1] - phi[0])
+    # one sample per grid node (the nodes at +-T/2 of neighbouring pairs are the same state): inside if either says so
+    node = np.round(off / step).astype(int)
+    nodes = np.arange(node.min(), node.max() + 1)
+    ins = np.zeros(nodes.size, bool)
+    np.logical_or.at(ins, node - node.min(), inside)
+    i0 = -node.min()                      # the node at offset 0
+    if not ins[i0]:
+        return 0.0, False
+    lo = i0
+    while lo > 0 and ins[lo - 1]:
+        lo -= 1
+    hi = i0
+    while hi < nodes.size - 1 and ins[hi + 1]:
+        hi += 1
+    span = (hi - lo + 1) * step
+    return float(span / T), bool(lo == 0 or hi == nodes.size - 1)

@@ -39,7 +39,7 @@ from ..hypoid_kinematics import HypoidPairKinematics
 from ..hypoid_pair import pitch_point
 from ._relations import curvature_tensor, relative_curvature_from_path, tangent_components
 from .local import te_parabola_coefficient
-from .machine_fit import FREE_DEFAULT, fit_settings
+from .machine_fit import FREE_DEFAULT, blade_point, fit_settings
 from .mean_contact import path_reference
 
 __all__ = ["HypoidSynthesis", "hypoid_path_terms", "synthesize_hypoid_pinion", "tca_surfaces"]
@@ -207,7 +207,7 @@ def synthesize_hypoid_pinion(gear_flank, pinion_cutter, pinion_settings, blank, 
     view = member_blank(blank, Member.PINION)
     cutter, settings, u, info = fit_settings(pinion_cutter, pinion_settings, view, side, target, target_nt, free)
     flank = generate_flank(cutter, settings, view, Member.PINION, side)
-    p1 = flank.evaluate(u, 0.0, curvature=False).points
+    p1 = blade_point(flank.generator, info["theta"]).points
     q1 = P - o1
     phi1 = math.atan2(q1[1], q1[0]) - math.atan2(p1[1], p1[0])
     lam = np.linalg.eigvalsh(K + np.outer(n, n))[:2]           # tangent-plane eigenvalues (the normal gets 1)

@@ -32,7 +32,7 @@ from ...generation import generate_flank
 from ...machine import Blade, HeadCutter, MachineSettings
 from ..ellipse import GLEASON_APPROACH
 from ._relations import path_speed_terms, relative_curvature_from_path, tangent_components
-from .machine_fit import FREE_DEFAULT, fit_settings
+from .machine_fit import FREE_DEFAULT, blade_point, fit_settings
 from .mean_contact import MeanContact, mean_contact, path_reference
 
 __all__ = ["SynthesisResult", "synthesize_pinion", "te_parabola_coefficient"]
@@ -261,7 +261,7 @@ def synthesize_pinion(gear_cutter, gear_settings, blank, *, side=Side.CONCAVE, e
                  if pinion_settings_hint is None else pinion_settings_hint)
     cutter, settings, u, info = fit_settings(pinion_cutter_hint, settings0, blank, side, target, target_nt, free)
     pinion_flank = generate_flank(cutter, settings, blank, Member.PINION, side)
-    p1 = pinion_flank.evaluate(u, 0.0, curvature=False).points
+    p1 = blade_point(pinion_flank.generator, info["theta"]).points
     phi1 = math.atan2(mc.point[1], mc.point[0]) - math.atan2(p1[1], p1[0])
     phi1 = float(np.angle(np.exp(1j * phi1)))
     pk, pd = _principal(K1, mc.normal)

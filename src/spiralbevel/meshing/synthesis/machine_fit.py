@@ -1,29 +1,29 @@
 """Pinion machine settings that generate prescribed first- and second-order geometry at one point.
 
-The generated pinion flank (``spiralbevel.generation``) is a black box (u, psi_c) -> point, outward normal, principal
+The generated pinion flank (``spiralbevel.generation``) is a black box (phi, psi_c) -> point, outward normal, principal
 curvatures (curvature transfer, docs/theory/generation.md, Eqs. (G13)-(G15) (#curvature-transfer)). The mean point is
-generated at the cradle angle psi_c = 0 (a gauge: the
-cradle angle q then places the cutter). Seven conditions, all invariant under rotation about the pinion axis (the
-pinion's rotation phi10 in the pair is free): axial position and radius of the point (2), axial and radial components
-of the unit normal (2), and the three components of the curvature tensor in the tangent basis of
-:func:`~spiralbevel.meshing.synthesis._relations.tangent_components` (3). Unknowns: the blade parameter u of the point
-and six machine/cutter quantities named by ``free``; every other setting keeps its starting value.
+generated at the cradle angle psi_c = 0 (a gauge: the cradle angle q then places the cutter). Seven conditions, all
+invariant under rotation about the pinion axis (the pinion's rotation phi10 in the pair is free): axial position and
+radius of the point (2), axial and radial components of the unit normal (2), and the three components of the curvature
+tensor in the tangent basis of :func:`~spiralbevel.meshing.synthesis._relations.tangent_components` (3). Unknowns: the
+cutter angle theta of the point (its blade parameter u follows from the equation of meshing) and six machine/cutter
+quantities named by ``free``; every other setting keeps its starting value.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import logging
 
 import numpy as np
 
+from ..._core.continuation import arclength_continuation
 from ..._core.newton import solve_batched
 from ...conventions import Member
-from ...errors import ConvergenceError, DesignError, SpiralBevelError
+from ...errors import ConvergenceError, DesignError, GeometryError, SpiralBevelError
 from ...generation import generate_flank
 from ...generation.meshing import Generator
 from ._relations import curvature_tensor, tangent_components
-
-import logging
 
 _log = logging.getLogger(__name__)
 
@@ -50,6 +50,13 @@ _SETTINGS = ("radial_setting", "cradle_angle", "machine_root_angle", "machine_ce
 # damping of the Newton steps (mm, rad, -): far-off iterates would leave the flank
 _MAX_STEP = dict(point_radius=5.0, blade_angle=0.02, radial_setting=5.0, cradle_angle=0.05, machine_root_angle=0.01,
                  machine_centre_to_back=1.0, sliding_base=1.0, blank_offset=5.0, ratio_of_roll=0.1, modified_roll=0.1)
+_MAX_STEP_THETA = 0.05   # rad, the point's cutter angle
+# a failed evaluation (no generated point) as a residual: large, finite, so that a step into it is shortened
+_BAD = 1e6
+# corrector tolerance along the continuation path, relative to the largest scaled residual of the start: the path
+# only has to be followed, not solved to the end tolerance (which the evaluation noise of the curvatures, about
+# 1e-7 in scaled units, would not always allow)
+_PATH_TOL = 1e-6
 
 
 def _value(cutter, settings, name):
@@ -79,13 +86,26 @@ def point_invariants(flank, u, psi_c=0.0):
 
     ``flank`` is a ``ToothFlank`` or its ``Generator`` (anything with ``evaluate(u, psi_c) -> FlankPoints``).
     """
-    fp = flank.evaluate(u, psi_c)
+    return _invariants(flank.evaluate(u, psi_c))
+
+
+def _invariants(fp):
     K = curvature_tensor(np.array([fp.k1, fp.k2]), np.stack([fp.e1, fp.e2]))
     return tangent_components(fp.points, fp.normals, K)
 
 
+def blade_point(generator, theta):
+    """Generated point (``FlankPoints``) at the cradle angle psi_c = 0 and the cutter angle ``theta`` (rad, relative
+    to the cutter's position, as ``FlankPoints.theta``), in the (phi, psi_c) chart; ``GeometryError`` where the blade
+    does not generate a point there (the chart's singular set)."""
+    fp = generator.evaluate_blade(float(theta) + np.pi - generator.mp["q"], 0.0)
+    if not np.isfinite(fp.u):
+        raise GeometryError.single("theta", float(theta), "a cutter angle at which the blade generates a point", "rad")
+    return fp
+
+
 def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_DEFAULT, tol=1e-9, max_iter=40):
-    """Solve for the ``free`` quantities and the blade parameter u.
+    """Solve for the ``free`` quantities and the cutter angle of the point.
 
     Parameters
     ----------
@@ -106,72 +126,76 @@ def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_D
 
     Returns
     -------
-    cutter, settings, u, info : HeadCutter, MachineSettings, float (mm), dict (iterations, residual)
+    cutter, settings, u, info : HeadCutter, MachineSettings, float (mm), dict
+        ``u`` is the blade parameter of the point; ``info``: ``theta`` (rad, its cutter angle at psi_c = 0, as
+        ``FlankPoints.theta``), ``iterations``, ``residual`` and ``method`` (``"newton"`` or ``"arclength"``).
+
+    Notes
+    -----
+    The seventh unknown is the point's cutter angle theta at psi_c = 0, its blade parameter u following from the
+    equation of meshing (the (phi, psi_c) chart, ``Generator.evaluate_blade``). The (u, psi_c) chart would do at
+    most spiral angles, but it folds inside the face at low ones (docs/conventions.md, "Fold of generation"): there
+    the point of a given u at psi_c = 0 ceases to exist along the way to the target, which stalled the solve.
+
+    Newton's method from the start first; if it fails, pseudo-arclength continuation
+    (:func:`~spiralbevel._core.continuation.arclength_continuation`) of the homotopy that moves the goal linearly
+    from the start's own invariants to the target; it follows the solution curve through turning points, where a
+    continuation in the goal alone stalls.
     """
     free = tuple(free)
     known = _CUTTER + _SETTINGS
     if len(free) != 6 or len(set(free)) != 6 or any(f not in known for f in free):
         raise DesignError.single("free", free, f"six distinct names from {known}", "-",
-                                 "seven conditions fix six machine quantities and the blade parameter u")
+                                 "seven conditions fix six machine quantities and the cutter angle of the point")
     scale = float(blank.Rm)
     w = np.array([1.0, 1.0, scale, scale, scale**2, scale**2, scale**2])
     target = np.asarray(target, float)
     flank0 = generate_flank(cutter0, settings0, blank, Member.PINION, side)
-    # start u: the flank point on the target circle (the cutter of the basic settings passes near it)
-    try:
-        u0 = float(flank0.locate(target[0], target[1], curvature=False).u)
-    except SpiralBevelError:
-        u0 = float(np.mean(flank0.generator.cp["u_j"])) + 2.0
-    x0 = np.array([_value(cutter0, settings0, f) for f in free] + [u0])
-    bad = np.full(7, 1e6)
     hand = flank0.hand
+    # start: the cutter angle of the flank point on the target circle (the cutter of the basic settings passes near
+    # it), else the blade junction's at psi_c = 0
+    try:
+        theta0 = float(flank0.locate(target[0], target[1], curvature=False).theta)
+    except SpiralBevelError:
+        theta0 = float(flank0.evaluate(flank0.generator.cp["u_j"], 0.0, curvature=False).theta)
+    x0 = np.array([_value(cutter0, settings0, f) for f in free] + [theta0])
 
     def invariants(x):
         c, s = build(cutter0, settings0, free, x[:6])
-        inv, _ = point_invariants(Generator(c, s, hand), x[6])       # the flank's kernel, without the outline
-        return inv
+        return _invariants(blade_point(Generator(c, s, hand), x[6]))[0]   # the flank's kernel, without the outline
 
-    def newton(goal, x_start):
-        def fun(x):
-            try:
-                return (invariants(x) - goal) * w
-            except SpiralBevelError:
-                return bad.copy()
-        return solve_batched(fun, x_start, tol=tol, max_iter=max_iter, max_step=step)
+    def residual(x, goal):
+        try:
+            return (invariants(x) - goal) * w
+        except SpiralBevelError:
+            return np.full(7, _BAD)
 
-    step = np.array([_MAX_STEP[f] for f in free] + [1.0])
-    res = newton(target, x0)
-    if not bool(res.converged):
-        # continuation: move the goal from the start's own invariants to the target in steps (halved on failure),
-        # each Newton solve starting from the previous solution
+    step = np.array([_MAX_STEP[f] for f in free] + [_MAX_STEP_THETA])
+    res = solve_batched(lambda x: residual(x, target), x0, tol=tol, max_iter=max_iter, max_step=step)
+    x, ok, iterations, resid, method = res.x, bool(res.converged), int(res.iterations), float(res.residual), "newton"
+    if not ok:
         try:
             inv0 = invariants(x0)
         except SpiralBevelError:
             inv0 = None
         if inv0 is not None:
-            t, dt, x, tries = 0.0, 0.25, x0, 0
-            while t < 1.0 and tries < 40:
-                tries += 1
-                t1 = min(1.0, t + dt)
-                r = newton(inv0 + t1 * (target - inv0), x)
-                _log.debug('continuation t=%.4f ok=%s x=%s', t1, bool(r.converged), r.x)
-                if bool(r.converged):
-                    t, x, dt = t1, r.x, min(0.5, 2.0 * dt)
-                    res = r
-                else:
-                    dt *= 0.5
-                    if dt < 1e-3:
-                        break
-            if t < 1.0:
-                res.converged = np.asarray(False)
-    if not bool(res.converged):
+            arc = arclength_continuation(lambda x, t: residual(x, inv0 + t * (target - inv0)), x0, step, tol=tol,
+                                         path_tol=_PATH_TOL * max(1.0, float(np.max(np.abs((target - inv0) * w)))))
+            _log.debug("arclength continuation: reached t = %.4f in %d steps, %d turning points, converged %s",
+                       arc.t, arc.steps, arc.turning_points, arc.converged)
+            if arc.converged:
+                x, ok, iterations, resid, method = arc.x, True, arc.steps, arc.residual, "arclength"
+            else:
+                resid = float(arc.residual)
+    if not ok:
         raise ConvergenceError(f"pinion machine settings: Newton did not reach the synthesized geometry "
-                               f"(free = {free}; scaled residual {float(res.residual):.3g})",
-                               iterations=res.iterations, residual=float(res.residual), last=res.x)
-    cutter, settings = build(cutter0, settings0, free, res.x[:6])
-    flank = generate_flank(cutter, settings, blank, Member.PINION, side)
-    _, nt = point_invariants(flank, res.x[6])
+                               f"(free = {free}; scaled residual {resid:.3g})",
+                               iterations=iterations, residual=resid, last=x)
+    cutter, settings = build(cutter0, settings0, free, x[:6])
+    fp = blade_point(Generator(cutter, settings, hand), x[6])
+    _, nt = _invariants(fp)
     if np.sign(nt) != np.sign(target_nt):
         raise ConvergenceError("pinion machine settings: Newton reached the mirror branch of the normal",
-                               iterations=res.iterations, residual=float(res.residual), last=res.x)
-    return cutter, settings, float(res.x[6]), dict(iterations=int(res.iterations), residual=float(res.residual))
+                               iterations=iterations, residual=resid, last=x)
+    return cutter, settings, float(fp.u), dict(theta=float(x[6]), iterations=iterations, residual=resid,
+                                               method=method)
