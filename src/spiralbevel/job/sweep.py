@@ -1,8 +1,9 @@
 """Misalignment sweeps of a face-milled pair: TCA at every point of a grid of misalignments, in parallel with dask.
 
 The grid points are dealt into a few interleaved batches per worker (:func:`sweep_batch`, one dask task each: the
-per-task overhead of the scheduler, a few ms, is paid a few times per worker instead of once per case). Each worker process rebuilds the
-pair from the design (a pydantic model as JSON: small to ship) once and keeps it for all its batches. With dask
+per-task overhead of the scheduler, a few ms, is paid a few times per worker instead of once per case). Each worker
+process rebuilds the pair from the design (a pydantic model as JSON: small to ship) once and keeps it for all its
+batches. With dask
 installed (extra ``dist``) the batches run on a pool of local processes that is kept for the next sweep of the session,
 or on a cluster given by its scheduler address (``dask.distributed``, ``--scheduler tcp://host:8786``); without dask,
 one after the other in this process.
