@@ -292,20 +292,14 @@ MACHINE_DEFAULT = "aviation_23x65_facemilled"
 def machine(design: Optional[Path] = typer.Argument(
         None, help=f"Face-milled design file, or a bundled example's name. Default: the bundled {MACHINE_DEFAULT}.")):
     """Print the machine summary sheet (cutter and cradle settings per member and side) of a face-milled design."""
-    from .gearset.blank import blank_from_design
-    from .gearset.facemilled import setup_flanks
+    from .gearset.gearset import GearSet
 
     spec = _load(MACHINE_DEFAULT if design is None else design)
     if spec.flank.kind != "face-milled":
         raise DesignError.single("flank.kind", spec.flank.kind, "'face-milled' for a machine summary", "-")
-    blank = blank_from_design(spec)
-    if blank.a != 0.0:   # a hypoid: basic settings at each member's mean cone distance, pinion by hypoid synthesis
-        from .gearset.hypoid import setup_hypoid_flanks
-
-        setups = setup_hypoid_flanks(spec, blank)
-    else:
-        setups = setup_flanks(spec, blank)
-    for (m, s), st in setups.items():
+    # the flanks of `spiralbevel run` (a hypoid: basic settings at each member's mean cone distance, the pinion by
+    # hypoid local synthesis)
+    for (m, s), st in GearSet(spec).setups.items():
         table = Table(title=f"{m.value} {s.value} ({st.source})")
         table.add_column("setting")
         table.add_column("value", justify="right")
@@ -318,7 +312,8 @@ def machine(design: Optional[Path] = typer.Argument(
 @app.command()
 @_guard
 def correct(
-    design: Path = typer.Argument(..., help="Face-milled design file (or bundled example name) the part was cut to."),
+    design: Path = typer.Argument(..., help="Face-milled design file (or bundled example name) the part was cut to; "
+                                  "spiral bevel or hypoid."),
     measured: Path = typer.Option(..., "--measured", help="CSV of the 9 x 5 grid with a deviation_mm column "
                                   "(positive = material added), as written by the main job and filled in by the CMM."),
     member: str = typer.Option(..., "--member", help="pinion or gear"),
@@ -367,8 +362,9 @@ def correct(
 @app.command()
 @_guard
 def sweep(
-    design: Path = typer.Argument(..., help="Face-milled design file, or a log-spiral one with [crowning] (the side of "
-                                  "its crowned pinion flank), or a bundled example name."),
+    design: Path = typer.Argument(..., help="Face-milled design file (spiral bevel, or hypoid: misalignments on top of "
+                                  "the offset), or a log-spiral one with [crowning] (the side of its crowned pinion "
+                                  "flank), or a bundled example name."),
     pinion_axial: Optional[str] = typer.Option(None, help="Delta A1 values, mm: 'v1,v2,...' or 'start:stop:count'."),
     gear_axial: Optional[str] = typer.Option(None, help="Delta A2 values, mm."),
     offset: Optional[str] = typer.Option(None, help="Delta E values, mm."),

@@ -202,17 +202,21 @@ def test_cli_blank_shows_the_hypoid_sheet(tmp_path):
     # `spiralbevel run` develops the hypoid pair: tests/gearset/test_run_hypoid.py
 
 
-@pytest.mark.parametrize("argv", [["rate"]], ids=["rate"])   # `check` develops the pair: tests/gearset
-def test_other_commands_stop_on_a_hypoid_instead_of_ignoring_the_offset(tmp_path, argv):
+def test_rate_on_a_hypoid_asks_for_the_hypoid_factor(tmp_path):
+    # the ISO 10300 hypoid rating takes Z_Hyp as given (tests/rating/test_hypoid_sample2.py): without it, a clear
+    # error naming the key, not a spiral bevel rating that ignores the offset
     f = tmp_path / "hypoid.toml"
     rating = ("\n[rating]\npinion_torque = 300.0\npinion_speed = 1200.0\nsigma_Hlim = 1500.0\nsigma_Flim = 480.0\n"
-              "oil_viscosity = 150.0\naccuracy_grade = 6\n"
-              if argv == ["rate"] else "")
+              "oil_viscosity = 150.0\naccuracy_grade = 6\n")
     f.write_text(SAMPLE2_TOML + rating)
-    res = CliRunner().invoke(app, [*argv, str(f)])
+    res = CliRunner().invoke(app, ["rate", str(f)])
     assert res.exit_code == 2, res.output
-    assert "gear_set.hypoid_offset" in " ".join(res.output.split())
+    assert "rating.hypoid_factor" in " ".join(res.output.split())
     assert "Traceback" not in res.output
+    f.write_text(SAMPLE2_TOML + rating + "hypoid_factor = 0.95\n")
+    res = CliRunner().invoke(app, ["rate", str(f), "--json"])
+    assert res.exit_code == 0, res.output
+    assert '"Z_Hyp": 0.95' in res.output
 
 
 def test_random_hypoid_data_give_a_sheet_or_a_design_error():

@@ -32,14 +32,17 @@ def report(tmp_path_factory):
     assert res.exit_code == 0, res.output
     assert "Traceback" not in res.output
     assert (out / "report.html").is_file()
-    return json.loads((out / "report.json").read_text())
+    report = json.loads((out / "report.json").read_text())
+    report["_html"] = (out / "report.html").read_text(encoding="utf-8")
+    return report
 
 
 def test_report_matches_the_schema(report):
     jsonschema = pytest.importorskip("jsonschema")
     from spiralbevel.io.report import report_schema
 
-    jsonschema.validate(report, report_schema(), cls=jsonschema.Draft202012Validator)
+    jsonschema.validate({k: v for k, v in report.items() if k != "_html"}, report_schema(),
+                        cls=jsonschema.Draft202012Validator)
     assert "Method 1" in report["blank"]["method"]
 
 
@@ -74,14 +77,23 @@ def test_tca_at_the_design_te_level_with_the_bearing_inside_the_flanks(report):
         assert abs(report["machine_settings"]["pinion"][s]["settings"]["blank_offset_mm"]) > 1.0
 
 
-def test_analyses_not_taking_the_offset_are_reported_not_available(report):
-    entries = report["hypoid"]["not_available"]
+def test_every_analysis_of_the_job_takes_the_offset(report):
     assert report["hypoid"]["offset_mm"] == 15.0
-    assert {e["section"] for e in entries} == {"ltca", "cad"}
-    assert all(e["status"] == "not available for hypoid pairs yet" and e["reason"] for e in entries)
+    assert report["hypoid"]["not_available"] == []
     assert report["failed_analyses"] == []
-    for key in ("ltca", "cad"):
-        assert key not in report
+
+
+def test_stl_of_whole_teeth_with_the_refitted_pinion_edge_radius(report):
+    """[output] stl: the teeth and the whole members, with their generated fillets (the slot and STEP checks are in
+    tests/io/test_step_hypoid.py). The derived pinion edge radius is refitted to the generated root slot, so the
+    whole pinion keeps its fillets (no warning); the wheel keeps its derived one."""
+    cad = report["cad"]
+    assert cad["warnings"] == [] and cad["fillet_rows"] > 0
+    assert {"pinion_tooth.stl", "pinion.stl", "gear_tooth.stl", "gear.stl"} <= set(report["files"])
+    r = cad["edge_radius_mm"]
+    assert r["pinion_convex"] == r["pinion_concave"] < r["gear_convex"] == r["gear_concave"]
+    for s in ("convex", "concave"):
+        assert "fitted to the generated root slot" in report["machine_settings"]["pinion"][s]["source"]
 
 
 def test_easeoff_against_the_hypoid_conjugate(report):
@@ -95,11 +107,11 @@ def test_easeoff_against_the_hypoid_conjugate(report):
     assert set(report["measurement"]) >= {"pinion_convex", "pinion_concave", "gear_convex", "gear_concave"}
 
 
-def test_rigid_loaded_tca_at_the_approach_torque(report):
+def test_rigid_loaded_tca_at_the_stated_torque(report):
     lt = report["hypoid"]["rigid_ltca"]
     assert lt["side"] == "drive" and lt["positions"] == report["tca"]["drive"]["positions"]
-    # no [ltca] torque in the example: the stated torque is the one of the 0.00635 mm approach at the mean contact
-    assert lt["torque_N_m"] == lt["torque_for_approach_N_m"] > 0
+    # the example's [ltca] torque (80 N m), the torque of the 0.00635 mm approach at the mean contact beside it
+    assert lt["torque_N_m"] == 80.0 and lt["torque_source"] == "[ltca] torque" and lt["torque_for_approach_N_m"] > 0
     # under load the teeth approach: the loaded TE lies beyond the unloaded one (the torque balance about the hypoid
     # wheel axis and the unloaded limit are checked in tests/meshing/ltca/test_hypoid_ltca.py)
     assert lt["loaded_transmission_error_largest_magnitude_arcsec"] > \
@@ -138,3 +150,31 @@ def test_misalignment_sensitivity_on_top_of_the_offset(report):
         # a 0.05 mm / 0.05 deg misalignment moves the bearing by a fraction of the face width (30 mm), not off it
         assert abs(c["contact_shift_along_face_mm"]) < 10.0 and abs(c["contact_shift_along_profile_mm"]) < 3.0, case
         assert c["peak_to_peak_arcsec"] > 0, case
+
+
+def test_fe_loaded_tca_at_the_stated_torque(report):
+    """The example's [ltca] section: FE tooth segments of both members placed by the offset kinematics (the balance
+    about each member's axis, the unloaded limit, Hertz and offset zero are checked in
+    tests/meshing/ltca/test_hypoid_fe_ltca.py)."""
+    lt, rigid = report["ltca"], report["hypoid"]["rigid_ltca"]
+    assert lt["status"] == "ok" and lt["side"] == "drive" and lt["torque_N_m"] == 80.0
+    assert "offset kinematics" in lt["model"]
+    # the tooth bending of the FE model adds to the contact flattening: at the same torque the FE teeth lag more
+    # than the rigid ones
+    assert abs(lt["loaded_transmission_error_largest_magnitude_arcsec"]) > \
+        rigid["loaded_transmission_error_largest_magnitude_arcsec"]
+    assert 0 < lt["max_contact_pressure_N_per_mm2"] < 5000.0
+    assert lt["positions_with_two_pairs_loaded"] > 0
+
+
+def test_rating_section_of_the_hypoid(report):
+    # ISO 10300 Method B1 with the hypoid branch (its figures: tests/rating/test_hypoid_sample2.py): the two mean
+    # spiral angles enter the virtual gear, the offset its face width, and the given Z_Hyp the pitting limit
+    r = report["rating"]
+    assert r["beta_v_deg"] == pytest.approx(0.5 * (report["blank"]["pinion"]["beta_m1_deg"]
+                                                   + report["blank"]["gear"]["beta_m2_deg"]), rel=1e-12)
+    assert r["Z_Hyp"] == 0.952
+    assert r["b_veff_mm"] < 0.85 * report["blank"]["gear"]["b2_mm"]
+    assert all(r[k] > 0.5 for k in ("S_H", "S_F1", "S_F2"))
+    # report.html shows the rating (its "Loaded TCA and rating" section, rendered from the keys)
+    assert "Loaded TCA and rating" in report["_html"] and "Z_Hyp" in report["_html"]

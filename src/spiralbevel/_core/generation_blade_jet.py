@@ -26,7 +26,7 @@ import numpy as np
 
 from .jit import kernel
 
-__all__ = ["parameters", "blade_jet_point", "jet_batch"]
+__all__ = ["parameters", "blade_jet_u", "blade_jet_point", "jet_batch"]
 
 # layout of prm: fixed head, then the variable-length roll, polynomial and table coefficients
 _S_BLADE, _RH, _CHI0, _RP, _RC, _ZC, _UP, _UJ = 0, 1, 2, 3, 4, 5, 6, 7
@@ -164,9 +164,11 @@ def _meshing(prm, u, c, sn, sb, cb, S, SOz, Ox, wx, wy, wz):
     return rho, z, dchi, nr, nc, nz, h, P, Q, P * c + Q * sn + R, P_u * c + Q_u * sn + R_u
 
 
-@kernel
-def blade_jet_point(prm, phi, psi, out):
-    """Jet at one point (phi, psi_c) rad into ``out (3, 6)`` (see module); returns the blade parameter u (mm)."""
+@kernel(inline="always")
+def blade_jet_u(prm, phi, psi, out):
+    """Jet at one point (phi, psi_c) rad into ``out (3, 6)`` (see module); returns the blade parameter u (mm) and its
+    derivatives (u_phi, u_psi) (mm/rad; NaN where the chart is singular): the fillet junction u = u_j is a flank
+    boundary of edge contact (:mod:`spiralbevel._core.tca_edge`)."""
     s, S, g, XB, XD = prm[_S_BLADE], prm[_S], prm[_G], prm[_XB], prm[_XD]
     psi_i, w, dw, E, dE, ddE = _roll_offset(prm, psi)
     sg, cg = math.sin(g), math.cos(g)
@@ -189,7 +191,7 @@ def blade_jet_point(prm, phi, psi, out):
             break
     if not math.isfinite(u):
         out[:, :] = math.nan
-        return u
+        return u, math.nan, math.nan
     rho, z, dchi, nr, nc, nz, h, P, Q, _, f_u = _meshing(prm, u, c, sn, sb, cb, S, SOz, Ox, wx, wy, wz)
     tt = dw * E + w * dE
     wx_p, wy_p, wz_p = -sg * tt, -cg * XB * dw - ddE, -cg * tt
@@ -238,7 +240,13 @@ def blade_jet_point(prm, phi, psi, out):
         x, y = out[0, j], my * out[1, j]
         out[0, j] = cr * x - sr * y
         out[1, j] = sr * x + cr * y
-    return u
+    return u, u_phi, u_psi
+
+
+@kernel
+def blade_jet_point(prm, phi, psi, out):
+    """Jet at one point (phi, psi_c) rad into ``out (3, 6)`` (see module); returns the blade parameter u (mm)."""
+    return blade_jet_u(prm, phi, psi, out)[0]
 
 
 @kernel

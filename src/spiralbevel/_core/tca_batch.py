@@ -18,10 +18,6 @@ import numpy as np
 
 __all__ = ["assembly_constants", "stack_state", "is_singular"]
 
-#: |det| of a matrix with unit columns bounds its singular values: s_min / s_max >= |det| / s_max^5 and
-#: s_max <= sqrt(5) (Frobenius), so |det| > 5^2.5 * rcond guarantees s_min / s_max > rcond.
-_DET_BOUND = 5.0 ** 2.5
-
 
 def assembly_constants(axes, scale):
     """Constants of the stacked contact system from :func:`spiralbevel._core.tca.assembly_axes` output.
@@ -48,32 +44,16 @@ def stack_state(r, n, dr=None, dn=None):
     return np.concatenate([r[..., None], n[..., None], dr, dn], -1)
 
 
-def _equilibrate(J):
-    cn = np.sqrt(np.einsum("...ij,...ij->...j", J, J))
-    cn = np.where(cn > 0, cn, 1.0)
-    return J / cn[..., None, :], cn
-
-
 def is_singular(J, tol):
     """Whether s_min / s_max of the column-equilibrated ``J (m, 5, 5)`` is below ``tol`` (line contact).
 
     Certificates first, an SVD only where they do not decide: with unit columns s_max >= 1 and, for the triangular
     factor R of a QR decomposition, s_min <= min_k |R_kk| (an eigenvalue of R bounds s_min from above): singular
     when min_k |R_kk| < tol; regular when |det| = prod_k |R_kk| > 5^2.5 tol
-    (see :func:`spiralbevel._core.tca_newton.step`).
+    (see :func:`spiralbevel._core.tca_newton.step`). Compiled: :func:`spiralbevel._core.tca_newton.singular_batch`.
     Non-finite systems are not singular.
     """
-    Js, _ = _equilibrate(J)
-    finite = np.isfinite(Js).all(axis=(-1, -2))
-    out = np.zeros(J.shape[:-2], bool)
-    if not finite.any():
-        return out
-    Jf = Js[finite] if not finite.all() else Js
-    d = np.abs(np.diagonal(np.linalg.qr(Jf, mode="r"), axis1=-2, axis2=-1))
-    sing = d.min(axis=-1) < tol
-    maybe = ~sing & ~(np.prod(d, axis=-1) > _DET_BOUND * tol)
-    if maybe.any():
-        s = np.linalg.svd(Jf[maybe], compute_uv=False)
-        sing[maybe] = s[..., -1] < tol * s[..., 0]
-    out[finite] = sing
-    return out
+    from . import tca_newton  # numba stays off the import path of the modules that only need the numpy helpers
+
+    J = np.ascontiguousarray(J, float)
+    return tca_newton.singular_batch(J.reshape((-1,) + J.shape[-2:]), float(tol)).reshape(J.shape[:-2])

@@ -47,6 +47,7 @@ __all__ = [
     "propose",
     "accept",
     "newton_jets",
+    "singular_batch",
 ]
 
 #: |det| of a matrix with unit columns bounds its singular values: s_min / s_max >= |det| / s_max^5 and
@@ -445,3 +446,66 @@ def newton_jets(kind1, p1, kind2, p2, c1, s1, x0, E, have_E, d, M2, L, aj, aval,
                 S1f[i] = T1f[t]
                 Q[i] = TQ[t]
     return x, F, J, res, S1, S2, S1f, Q, it
+
+
+@kernel
+def _qr_diag(A, d):
+    """|R_kk| (k = 0..4) of a Householder QR of ``A (k, 5)`` (overwritten) into ``d (5,)``."""
+    k, n = A.shape
+    for j in range(n):
+        nrm = 0.0
+        for i in range(j, k):
+            nrm += A[i, j] * A[i, j]
+        nrm = math.sqrt(nrm)
+        d[j] = nrm
+        if nrm == 0.0:
+            continue
+        alpha = -nrm if A[j, j] >= 0 else nrm
+        A[j, j] -= alpha  # v = a - alpha e_j, stored in column j
+        vv = 0.0
+        for i in range(j, k):
+            vv += A[i, j] * A[i, j]
+        if vv == 0.0:
+            continue
+        for c in range(j + 1, n):
+            dot = 0.0
+            for i in range(j, k):
+                dot += A[i, j] * A[i, c]
+            f = 2.0 * dot / vv
+            for i in range(j, k):
+                A[i, c] -= f * A[i, j]
+
+
+@kernel
+def singular_batch(J, tol):
+    """Whether s_min / s_max of the column-equilibrated ``J (m, k, 5)`` is below ``tol``, per system (line contact).
+
+    Certificates first, the Jacobi SVD only where they do not decide: with unit columns s_max >= 1 and, for the
+    triangular factor R of a QR decomposition, s_min <= min_j |R_jj|: singular when min_j |R_jj| < tol; regular when
+    |det| = prod_j |R_jj| > 5^2.5 tol (see :func:`step`). Non-finite systems are not singular."""
+    m = J.shape[0]
+    out = np.zeros(m, np.bool_)
+    d = np.empty(5)
+    for i in range(m):
+        if not _all_finite(J[i]):
+            continue
+        A, _ = _equilibrate(J[i])
+        B = A.copy()
+        _qr_diag(B, d)
+        dmin, prod = d[0], 1.0
+        for j in range(5):
+            dmin = min(dmin, d[j])
+            prod *= d[j]
+        if dmin < tol:
+            out[i] = True
+        elif not prod > _DET_BOUND * tol:
+            _jacobi_svd(A)
+            smin, smax = math.inf, 0.0
+            for a in range(5):
+                acc = 0.0
+                for r in range(A.shape[0]):
+                    acc += A[r, a] * A[r, a]
+                s = math.sqrt(acc)
+                smin, smax = min(smin, s), max(smax, s)
+            out[i] = smin < tol * smax
+    return out

@@ -283,7 +283,6 @@ class GearSet:
         from .results import LTCA
 
         self._require("face-milled", "ltca() (the loaded TCA of a log-spiral pair is not implemented)")
-        self._no_hypoid("ltca()")
         base = self.design.ltca or LTCASpec()
         upd = {"torque": torque}
         if side is not None:
@@ -291,7 +290,12 @@ class GearSet:
         if positions is not None:
             upd["positions"] = positions
         lt = LTCASpec.model_validate({**base.model_dump(), **upd})
-        res, section = run_ltca(self.blank, self.setups, lt)
+        if self.is_hypoid:   # FE segments placed by the offset kinematics of the synthesized pair
+            from .hypoid_ltca import hypoid_fe_ltca
+
+            res, section = hypoid_fe_ltca(self, lt)
+        else:
+            res, section = run_ltca(self.blank, self.setups, lt)
         return LTCA(lt.side, res, section)
 
     def easeoff(self):
@@ -354,8 +358,6 @@ class GearSet:
     def _cad_files(self, directory, fmt, whole_gear=True):
         from . import outputs
 
-        if self.kind == "face-milled":
-            self._no_hypoid(f"to_{fmt}()")
         out = Path(directory)
         out.mkdir(parents=True, exist_ok=True)
         tooth, teeth, cad = self._tooth_grids()

@@ -1,7 +1,8 @@
 """Face-milled hypoid designs in the job: the four flanks of a hypoid pair (basic settings at each member's mean cone
 distance, local synthesis of the pinion in the crossed-axes frame), and the hypoid pair of one side phased for meshing
-with the offset kinematics. Used by :class:`~spiralbevel.gearset.GearSet` (``spiralbevel run``, ``machine``); the
-commands that do not handle the offset yet stop on a hypoid (``gearset.blank.require_no_offset``)."""
+with the offset kinematics. Used by :class:`~spiralbevel.gearset.GearSet` (``spiralbevel run``, ``machine``) and by
+``spiralbevel correct`` and ``sweep`` (``job.correction.flank_setups``, ``job.sweep_hypoid``); the paths that still
+assemble spiral bevel flanks only stop on a hypoid (``gearset.blank.require_no_offset``)."""
 
 from __future__ import annotations
 
@@ -120,12 +121,16 @@ def setup_hypoid_flanks(spec, blank, with_synthesis: bool = False):
     The basic settings of each member are solved at its own mean cone distance for the design mean-point angles; the
     pinion side of each synthesized pair side is then replaced by the hypoid local synthesis at the pitch point
     (the design file's ``[synthesis]``, or the developed-pair defaults with the path direction chosen to keep the
-    bearing inside the flanks). Returns ``{(member, side): FlankSetup}`` (and ``{side name: HypoidSynthesis}`` with
-    ``with_synthesis``).
+    bearing inside the flanks); a derived edge radius that the generated root slot does not hold is then refitted
+    (:func:`~spiralbevel.gearset.hypoid_fillet.fit_edge_radii`). Returns ``{(member, side): FlankSetup}`` (and
+    ``{side name: HypoidSynthesis}`` with ``with_synthesis``).
     """
+    from .hypoid_fillet import fit_edge_radii
+
     out = _basic(spec, blank)
     new, synth = _synthesize(spec, blank, out)
     out.update(new)
+    fit_edge_radii(spec, blank, out, synth)   # the derived edge radius that the generated root slot holds
     return (out, synth) if with_synthesis else out
 
 

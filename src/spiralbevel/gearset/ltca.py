@@ -53,13 +53,20 @@ def run_ltca_job(spec, blank, setups):
     return run_ltca(blank, setups, spec.ltca)
 
 
-def run_ltca(blank, setups, lt):
+def run_ltca(blank, setups, lt, pair=None):
     """Unloaded TCA, FE tooth compliance and the loaded cycle with the options ``lt`` (an ``[ltca]`` section,
-    :class:`~spiralbevel.io.design_schema.LTCASpec`). Returns (LTCAResult or None, report section)."""
+    :class:`~spiralbevel.io.design_schema.LTCASpec`). Returns (LTCAResult or None, report section).
+
+    ``pair`` (a :class:`~spiralbevel.meshing.pair.MeshingPair` of the ``lt.side`` flanks of ``setups``) replaces the
+    intersecting-axes assembly of the blank: the hypoid pair with the offset kinematics
+    (:func:`~spiralbevel.gearset.hypoid.hypoid_pair`). The FE tooth segments are built from the same flank grids in
+    each member's own frame either way; the pair's kinematics place them, so loads act along the common normal and
+    the moment arms are taken about each member's own axis."""
     from ..meshing.ltca import Material, ltca_model
 
     s1, s2 = SIDES[lt.side]
-    pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
+    if pair is None:
+        pair = meshing_pair(setups[(Member.PINION, s1)].flank, setups[(Member.GEAR, s2)].flank, blank)
     c1, c2, kin = pair.pinion, pair.gear, pair.kinematics
     tca = solve_tca(c1, c2, kin, n_positions=lt.positions, start=pair.start)
     nf, npf = lt.flank_grid

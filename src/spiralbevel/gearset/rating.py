@@ -25,7 +25,7 @@ FIELD_PATHS = {
     "profile_crowning": "rating.profile_crowning",
     "E": "rating.youngs_modulus", "nu": "rating.poisson_ratio", "density": "rating.density",
     "S_Hmin": "rating.S_Hmin", "S_Fmin": "rating.S_Fmin", "material": "rating.material",
-    "load_cycles": "rating.load_cycles",
+    "load_cycles": "rating.load_cycles", "Z_Hyp": "rating.hypoid_factor",
 }
 
 
@@ -68,7 +68,8 @@ def rating_input_from_design(spec: DesignFile, blank):
             Rz_root=tuple(r.root_roughness), K_A=r.application_factor, mounting=r.mounting,
             contact_pattern=r.contact_pattern, profile_crowning=r.profile_crowning, E=r.youngs_modulus,
             nu=r.poisson_ratio, density=r.density,
-            S_Hmin=r.S_Hmin, S_Fmin=r.S_Fmin, material=r.material, load_cycles=r.load_cycles)
+            S_Hmin=r.S_Hmin, S_Fmin=r.S_Fmin, material=r.material, load_cycles=r.load_cycles,
+            Z_Hyp=r.hypoid_factor)
     except DesignError as err:
         raise DesignError([Problem(FIELD_PATHS.get(p.field, p.field), p.value, p.allowed, p.unit, p.reason)
                            for p in err.problems]) from err
@@ -79,11 +80,8 @@ def rating_from_design(spec: DesignFile, blank=None):
     from ..rating import rate_iso10300
     from .blank import blank_from_design
 
-    from .blank import require_no_offset
-
     if blank is None:
         blank = blank_from_design(spec)
-    require_no_offset(blank, "spiralbevel rate (ISO 10300 Method B1 for spiral bevel gears)")
     return rate_iso10300(blank, rating_input_from_design(spec, blank))
 
 

@@ -1,7 +1,8 @@
 """The hypoid branch of the main job (a face-milled design with ``gear_set.hypoid_offset`` != 0): the ISO 23509
 Method 1 pair developed by the default (or given) hypoid local synthesis, its machine settings, design against
 achieved mean-point angles, the TCA of both sides with the offset kinematics, the loaded TCA of the drive side with
-rigid teeth, the ease-off against the hypoid conjugate and the CMM grids. The analyses that do not take the
+rigid teeth and (``[ltca]``) with FE tooth compliance, the ease-off against the hypoid conjugate, the CMM grids and
+(``[output] stl / step``) the whole teeth as STL and STEP. The analyses that do not take the
 offset yet are reported as not available (``hypoid.not_available``), not as failures."""
 
 from __future__ import annotations
@@ -17,18 +18,13 @@ from .units import synthesis_units
 NOT_AVAILABLE = "not available for hypoid pairs yet"
 
 #: (report section, what it is, why it is left out) of the analyses not run on a hypoid pair
-_LEFT_OUT = (
-    ("ltca", "loaded TCA with FE tooth compliance",
-     "the FE tooth segment is built with the intersecting-axes assembly; the loaded TCA with rigid teeth (contact "
-     "flattening only) is in hypoid.rigid_ltca"),
-    ("cad", "STL / STEP of the teeth", "the whole-tooth builder (fillets, tooth rotation) is not checked for "
-                                      "hypoid members"),
-)
+_LEFT_OUT: tuple = ()
 
 
 def hypoid_steps(spec) -> int:
     """Progress steps of :func:`run_hypoid` (the rigid loaded TCA counted: it runs when the drive TCA does)."""
-    return 5 + int(spec.output.plots)
+    o = spec.output
+    return 5 + int(o.plots) + int(spec.ltca is not None) + int(o.stl) + int(o.step)
 
 
 def run_hypoid(gs, out, steps, report, summary):
@@ -98,6 +94,17 @@ def run_hypoid(gs, out, steps, report, summary):
                     f"loaded TCA drive, rigid teeth: torque {sec['torque_N_m']:.2f} N m (approach 0.00635 mm), "
                     f"loaded TE {sec['loaded_transmission_error_largest_magnitude_arcsec']:.3f} arcsec, max pressure "
                     f"{sec['max_contact_pressure_N_per_mm2']:.0f} N/mm^2")
+    if spec.ltca is not None:   # FE loaded TCA of the [ltca] section (gearset/hypoid_ltca.py)
+        from .hypoid_ltca import hypoid_ltca_report
+
+        side = spec.ltca.side
+        if side in synth:
+            hypoid_ltca_report(gs, report, summary, steps, out, spec.output.plots,
+                               outlines.get(side, (None, None))[1])
+        else:
+            report["ltca"] = {"side": side, "error": f"the {side} side's pinion flank was not synthesized "
+                                                     "(synthesis.sides): a hypoid pair meshes through its synthesis"}
+            mark_failed(summary.partial, report["ltca"], f"loaded TCA, {side} side")
     if spec.output.plots:
         with steps.step("plots"):
             for name, res in results.items():
@@ -106,9 +113,14 @@ def run_hypoid(gs, out, steps, report, summary):
                     fig.suptitle(f"TCA, {name} side: {spec.title}")
                     fig.tight_layout(rect=(0, 0, 1, 0.93))
                     summary.files.append(outputs.save_figure(fig, out / f"tca_{name}.png"))
+    if spec.output.stl or spec.output.step:   # whole teeth with their generated fillets (gearset/hypoid_cad.py)
+        from .hypoid_cad import hypoid_cad
+
+        hypoid_cad(gs, out, steps, report, summary)
     summary.highlights += tca_and_flank_highlights(report, flanks, machines)
-    summary.highlights.append(f"hypoid pair (offset {float(blank.a):g} mm): " + "; ".join(
-        f"{w['analysis']} {NOT_AVAILABLE}" for w in missing))
+    if missing:
+        summary.highlights.append(f"hypoid pair (offset {float(blank.a):g} mm): " + "; ".join(
+            f"{w['analysis']} {NOT_AVAILABLE}" for w in missing))
 
 
 def rigid_ltca_section(pair, tca, spec) -> dict:

@@ -210,17 +210,15 @@ class Locator:
         return BladeLocator(self.gen, self.outline, (self.gen.cp["u_j"] - 0.25 * (self.outline.ham + self.outline.hfm),
                                                      self.u_range[1]), self.psi_span)
 
-    def _blade_or_fail(self, x, ok, what):
-        """(u, phi, psi_c) of blade solves, or the error naming the points the blade chart did not reach."""
-        ok = ok & (self.blade.on_branch(x)[1] >= self.gen.cp["u_j"] - 1e-9)
+    def _blade_or_fail(self, x, ok, u, what):
+        """(u, phi, psi_c) of blade solves (u mm of each), or the error naming the points the blade chart did not
+        reach."""
+        with np.errstate(invalid="ignore"):
+            ok = ok & (u >= self.gen.cp["u_j"] - 1e-9)
         if not np.all(ok):
             raise GeometryError.single(
                 what, f"{int((~ok).sum())} of {ok.size} points", "points on the generated flank", "mm",
                 "the generated blade flank does not reach them: cutter/settings miss the blank or the face width")
-        return self._triple(x)
-
-    def _triple(self, x):
-        _, _, u = self.gen.blade_axial_radial(x[..., 0], x[..., 1])
         return np.stack([u, x[..., 0], x[..., 1]], -1)
 
     def at_axial_radius(self, axial, radius):
@@ -231,9 +229,10 @@ class Locator:
         x = np.empty(axial.shape + (3,))
         todo = np.ones(axial.shape, bool)
         if not self.blade.empty:
-            xb, ok = self.blade.at_axial_radius(axial, radius)
-            ok &= self.blade.on_branch(xb)[1] >= self.gen.cp["u_j"] - 1e-9
-            x[ok] = self._triple(xb[ok])
+            xb, ok, ub = self.blade.at_axial_radius(axial, radius)
+            with np.errstate(invalid="ignore"):
+                ok &= ub >= self.gen.cp["u_j"] - 1e-9
+            x[ok] = np.stack([ub[ok], xb[ok][..., 0], xb[ok][..., 1]], -1)
             todo = ~ok
         if np.any(todo):
             xu = self._at_axial_radius_u(axial[todo], radius[todo])
@@ -246,8 +245,8 @@ class Locator:
         ax, rad = self.outline.axial_radius(np.asarray(R, float), np.asarray(h, float))
         if self.blade.empty:
             raise self._no_reach("grid(blade)")
-        x, ok = self.blade.at_axial_radius(ax, rad, x0)
-        return self._blade_or_fail(x, ok, "grid(blade)")
+        x, ok, u = self.blade.at_axial_radius(ax, rad, x0)
+        return self._blade_or_fail(x, ok, u, "grid(blade)")
 
     def junction(self, R, anchor=None):
         """(u, phi, psi_c) of the fillet/blade junction line (u = u_j) at cone-distance coordinates R (mm); ``anchor``
@@ -255,8 +254,8 @@ class Locator:
         if self.blade.empty:
             raise self._no_reach("grid(face station)")
         R = np.asarray(R, float)
-        x, ok = self.blade.at_R_u(R, np.full_like(R, self.gen.cp["u_j"]), anchor)
-        return self._blade_or_fail(x, ok, "grid(face station)")
+        x, ok, u = self.blade.at_R_u(R, np.full_like(R, self.gen.cp["u_j"]), anchor)
+        return self._blade_or_fail(x, ok, u, "grid(face station)")
 
     def fillet_rows(self, R, u, xj):
         """(u, phi, psi_c) of the fillet points at cone-distance coordinates R (n,) mm and blade parameters u (k,) mm

@@ -3,16 +3,17 @@
 The (u, psi_c) chart of the generated flank folds where the two cutter angles that solve the equation of meshing of
 generation merge (at low spiral angles that fold runs through the face width); the (phi, psi_c) chart, with the blade
 parameter u solved from the equation of meshing, is regular there (docs/conventions.md, "Fold of generation").
-Points on the blade (u >= u_j) are located here by batched Newton solves in (phi, psi_c); the fillet keeps the
-(u, psi_c) chart (``locate.Locator``).
+Points on the blade (u >= u_j) are located here by compiled Newton solves in (phi, psi_c)
+(:mod:`spiralbevel._core.blade_locate`); the fillet keeps the (u, psi_c) chart (``locate.Locator``).
 """
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 from scipy.spatial import cKDTree
 
-from spiralbevel._core.newton import solve_batched
 from spiralbevel.conventions import TOL
 
 __all__ = ["BladeLocator"]
@@ -62,32 +63,36 @@ class BladeLocator:
         self._Ru = cKDTree(np.stack([R[ok], u[ok]], -1))
 
     # ------------------------------------------------------------------------------------------------------------
-    def on_branch(self, x):
-        """True where (phi, psi_c) is a regular point of the chart within the table's cutter-angle window."""
+    def on_branch(self, x, u=None):
+        """True where (phi, psi_c) is a regular point of the chart within the table's cutter-angle window, and the
+        blade parameter u (mm; computed unless given)."""
         phi, psi = x[..., 0], x[..., 1]
-        _, _, u = self.gen.blade_axial_radial(phi, psi)
+        if u is None:
+            _, _, u = self.gen.blade_axial_radial(phi, psi)
         d = np.angle(np.exp(1j * (phi - self.gen.reference_angle(psi))))
         return np.isfinite(u) & (np.abs(d) <= self.phi_span), u
 
-    def _solve(self, fun, starts, accept=None):
-        """Batched Newton from the first start; the following starts for the systems not yet converged (or whose
-        solution ``accept(x)`` rejects). Returns (x (..., 2), converged (...))."""
-        x, conv = None, None
+    def _solve(self, solver, starts, accept=None):
+        """Compiled Newton ``solver(x0) -> (x, converged, u)`` (:mod:`spiralbevel._core.blade_locate`) from the first
+        start; the following starts for the systems not yet converged (or whose solution ``accept(x, u)`` rejects).
+        Returns (x (..., 2), converged (...), u (...) mm)."""
+        x, conv, u = None, None, None
         for x0 in starts:
-            res = solve_batched(fun, x0, tol=TOL.newton_abs * 10, max_iter=TOL.max_iter, max_step=_MAX_STEP)
-            ok, _ = self.on_branch(res.x)
-            ok &= res.converged
+            xr, cv, ur = solver(x0)
+            ok, ur = self.on_branch(xr, ur)
+            ok &= cv
             if accept is not None:
-                ok &= accept(res.x)
+                ok &= accept(xr, ur)
             if x is None:
-                x, conv = res.x, ok
+                x, conv, u = xr, ok, ur
             else:
                 keep = ~conv & ok
-                x = np.where(keep[..., None], res.x, x)
+                x = np.where(keep[..., None], xr, x)
+                u = np.where(keep, ur, u)
                 conv = conv | keep
             if np.all(conv):
                 break
-        return x, conv
+        return x, conv, u
 
     def _nearest(self, tree, tgt, shape, k=0):
         _, idx = tree.query(tgt.reshape(-1, 2), k=k + 1)
@@ -95,48 +100,61 @@ class BladeLocator:
         return self._par[idx].reshape(shape + (2,))
 
     def at_axial_radius(self, axial, radius, x0=None):
-        """(phi, psi_c) (..., 2) and converged mask (...) of the blade points on the circles (axial, radius)."""
+        """(phi, psi_c) (..., 2), converged mask (...) and blade parameter u (...) mm of the blade points on the
+        circles (axial, radius)."""
         axial, radius = np.broadcast_arrays(np.asarray(axial, float), np.asarray(radius, float))
         gen = self.gen
+        from spiralbevel._core import blade_locate, generation_blade_jet  # numba off the CLI's import path
 
-        def fun(x):
-            ax, rad, _ = gen.blade_axial_radial(x[..., 0], x[..., 1])
-            return np.stack([rad - radius, ax - axial], -1)
+        prm = generation_blade_jet.parameters(gen.cp, gen.mp, False, 0.0)   # axial and radius: no mirror needed
+        a, r = np.ascontiguousarray(axial.ravel()), np.ascontiguousarray(radius.ravel())
+
+        def solver(x0):     # compiled Newton, analytic Jacobian of the jet (_core/blade_locate.py)
+            x, u, conv, _ = blade_locate.locate_axial_radius(
+                prm, np.ascontiguousarray(np.broadcast_to(x0, axial.shape + (2,)).reshape(-1, 2), float), a, r,
+                TOL.newton_abs * 10, TOL.max_iter, _MAX_STEP)
+            return x.reshape(axial.shape + (2,)), conv.reshape(axial.shape), u.reshape(axial.shape)
 
         tgt = np.stack([axial, radius], -1)
-        starts = ([] if x0 is None else [np.broadcast_to(x0, axial.shape + (2,))])
-        starts += [self._nearest(self._tab, tgt, axial.shape, k) for k in range(4)]
+        starts = itertools.chain([] if x0 is None else [np.broadcast_to(x0, axial.shape + (2,))],
+                                 (self._nearest(self._tab, tgt, axial.shape, k) for k in range(4)))   # when needed
 
-        def accept(x):      # on the blade: the extended blade cone below the junction generates another surface
+        def accept(x, u):   # on the blade: the extended blade cone below the junction generates another surface
             with np.errstate(invalid="ignore"):
-                return gen.blade_axial_radial(x[..., 0], x[..., 1])[2] >= self.u_j - 1e-9
+                return u >= self.u_j - 1e-9
 
-        return self._solve(fun, starts, accept)
+        return self._solve(solver, starts, accept)
 
     def at_R_u(self, R, u, anchor=None):
-        """(phi, psi_c) and converged mask of the blade points with cone-distance coordinate R (mm) and blade
+        """(phi, psi_c), converged mask and u (mm) of the blade points with cone-distance coordinate R (mm) and blade
         parameter u (mm, >= u_j); ``anchor`` (2,) (phi, psi_c) of a flank point (the mean point) is the first start,
         so that the line u = const is the one through the flank's own contact zone."""
         R, u = np.broadcast_arrays(np.asarray(R, float), np.asarray(u, float))
         gen, ol = self.gen, self.outline
+        from spiralbevel._core import blade_locate, generation_blade_jet  # numba off the CLI's import path
 
-        def fun(x):
-            ax, rad, uu = gen.blade_axial_radial(x[..., 0], x[..., 1])
-            Rx, _ = ol.Rh(ax, rad)
-            return np.stack([Rx - R, uu - u], -1)
+        prm = generation_blade_jet.parameters(gen.cp, gen.mp, False, 0.0)
+        Rf, uf = np.ascontiguousarray(R.ravel()), np.ascontiguousarray(u.ravel())
+
+        def solver(x0):     # compiled Newton (_core/blade_locate.py)
+            x, uu, conv, _ = blade_locate.locate_R_u(
+                prm, np.ascontiguousarray(np.broadcast_to(x0, R.shape + (2,)).reshape(-1, 2), float), Rf, uf,
+                float(np.sin(ol.delta)), float(np.cos(ol.delta)), TOL.newton_abs * 10, TOL.max_iter, _MAX_STEP)
+            return x.reshape(R.shape + (2,)), conv.reshape(R.shape), uu.reshape(R.shape)
 
         # starts: table points nearest the root-cone point at R (the junction runs close to the root), then those
         # nearest in (R, u)
         ax0, rad0 = ol.axial_radius(R, ol.h_root(R))
         near_root = np.stack([ax0, rad0], -1)
-        starts = [] if anchor is None else [np.broadcast_to(np.asarray(anchor, float), R.shape + (2,))]
-        starts += [self._nearest(self._tab, near_root, R.shape, k) for k in range(3)]
-        starts += [self._nearest(self._Ru, np.stack([R, u], -1), R.shape, k) for k in range(3)]
+        starts = itertools.chain(
+            [] if anchor is None else [np.broadcast_to(np.asarray(anchor, float), R.shape + (2,))],
+            (self._nearest(self._tab, near_root, R.shape, k) for k in range(3)),
+            (self._nearest(self._Ru, np.stack([R, u], -1), R.shape, k) for k in range(3)))   # when needed
         depth = ol.ham + ol.hfm
 
-        def accept(x):      # the junction line's point of this face station, not one of its continuation
+        def accept(x, u):   # the junction line's point of this face station, not one of its continuation
             ax, rad, _ = gen.blade_axial_radial(x[..., 0], x[..., 1])
             with np.errstate(invalid="ignore"):
                 return np.abs(ol.Rh(ax, rad)[1] - ol.h_root(R)) < depth
 
-        return self._solve(fun, starts, accept)
+        return self._solve(solver, starts, accept)

@@ -271,6 +271,8 @@ class RatingSpec(_Model):
     S_Hmin: float = _f(1.0, gt=0.0, le=10.0, description="minimum safety factor for pitting")
     S_Fmin: float = _f(1.3, gt=0.0, le=10.0, description="minimum safety factor for bending")
     load_cycles: Optional[float] = _f(None, gt=0.0, le=1e15, description="pinion load cycles N_L; default long life")
+    hypoid_factor: Optional[float] = _f(None, gt=0.0, le=1.0, description="Z_Hyp, ISO 10300-2 hypoid factor of a "
+                                        "hypoid pair (required with gear_set.hypoid_offset != 0, unused without)")
     oil_viscosity: float = _f(..., unit="mm^2/s", gt=0.0, le=1e5, description="nu_40 of the lubricant")
     flank_roughness: Pair = _f((8.0, 8.0), unit="um", description="Rz of the flanks [pinion, gear]")
     root_roughness: Pair = _f((16.0, 16.0), unit="um", description="Rz of the root fillets [pinion, gear]")

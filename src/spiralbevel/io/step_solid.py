@@ -68,12 +68,15 @@ def _tooth_solid(occ, ga: list, gb: list, sa: list, sb: list, tol: float, n_acro
 
 
 def _body_solid(occ, pa, pb, body: GearBody):
-    """Solid of revolution under the teeth: the cone through the apex fitted to the root edges of both flanks (its
-    polar angle the mean of theirs), between planes through the lowest toe and highest heel root points, down to
-    the bore. (solid, volume, dict of the chosen values)."""
+    """Solid of revolution under the teeth: the cone fitted to the root edges of both flanks (the least-squares line
+    r = r0 + k z through their (z, r) in the axial plane: a cone through the apex for a spiral bevel member, whose
+    root edges lie on it, r0 = 0 to round-off; a root apex off the member origin for a hypoid member), between planes
+    through the lowest toe and highest heel root points, down to the bore. (solid, volume, dict of the chosen
+    values)."""
     gp = occ["gp"]
     root = np.concatenate([pa[:, 0], pb[:, 0]])
-    theta = float(np.mean(np.arctan2(np.hypot(root[:, 0], root[:, 1]), root[:, 2])))
+    r0, k = np.linalg.lstsq(np.column_stack([np.ones(len(root)), root[:, 2]]), np.hypot(root[:, 0], root[:, 1]),
+                            rcond=None)[0]
     toe = np.stack([pa[0, 0], pb[0, 0]])
     heel = np.stack([pa[-1, 0], pb[-1, 0]])
     z_front, z_back = float(toe[:, 2].min()), float(heel[:, 2].max())
@@ -81,7 +84,7 @@ def _body_solid(occ, pa, pb, body: GearBody):
     back = body.back_z if body.back_z is not None else z_back
     r_toe = float(np.hypot(toe[:, 0], toe[:, 1]).min())
     bore = body.bore_radius if body.bore_radius is not None else 0.5 * r_toe
-    r_front, r_back = z_front * np.tan(theta), z_back * np.tan(theta)
+    r_front, r_back = float(r0 + k * z_front), float(r0 + k * z_back)
     if not 0.0 < bore < min(r_front, r_back):
         raise DesignError.single("body.bore_radius", bore, f"0 < value < {min(r_front, r_back):.6g} (root radius)",
                                  "mm")

@@ -1,4 +1,9 @@
-"""Corrective machine settings from a CMM measurement of one flank of a face-milled design (``spiralbevel correct``)."""
+"""Corrective machine settings from a CMM measurement of one flank of a face-milled design (``spiralbevel correct``).
+
+A hypoid design (``gear_set.hypoid_offset`` != 0) takes its four flanks from the hypoid branch (basic settings at each
+member's mean cone distance, the pinion by hypoid local synthesis), and each member is generated, measured and
+corrected in its own view of the blank (``design.hypoid_member.member_blank``): the pinion's settings are those of the
+universal generator with the blank offset that the synthesis chose."""
 
 from __future__ import annotations
 
@@ -8,6 +13,23 @@ from ..conventions import Member, Side
 from ..errors import DesignError
 from ..gearset.blank import blank_from_design
 from ..gearset.facemilled import setup_flanks
+
+
+def flank_setups(spec, blank):
+    """The four flanks of a face-milled design and the blank each member is generated in.
+
+    Returns
+    -------
+    (dict, callable)
+        ``{(Member, Side): FlankSetup}`` and ``member -> blank``: the ISO 23509 blank itself for a spiral bevel pair,
+        the member's view (``member_blank``) for a hypoid pair.
+    """
+    if float(blank.a) != 0.0:
+        from ..design.hypoid_member import member_blank
+        from ..gearset.hypoid import setup_hypoid_flanks
+
+        return setup_hypoid_flanks(spec, blank), lambda m: member_blank(blank, m)
+    return setup_flanks(spec, blank), lambda m: blank
 
 
 def correct_from_measurement(spec, member: str, side: str, measured_csv, parameters=None, regularization=0.0,
@@ -27,11 +49,11 @@ def correct_from_measurement(spec, member: str, side: str, measured_csv, paramet
     except ValueError as err:
         raise DesignError.single("member/side", f"{member}/{side}", "pinion|gear / convex|concave", "-") from err
     blank = blank_from_design(spec)
-    setups = setup_flanks(spec, blank)
+    setups, member_view = flank_setups(spec, blank)
     st = setups[(m, s)]
     grid = measurement_grid(st.flank)
     measured = read_measured_deviation(measured_csv, grid)
-    res = correct_settings(st.cutter, st.settings, blank, m, s, grid, measured,
+    res = correct_settings(st.cutter, st.settings, member_view(m), m, s, grid, measured,
                            parameters=tuple(parameters) if parameters else DEFAULT_PARAMETERS,
                            regularization=regularization)
     return (st, res, setups) if with_setups else (st, res)
@@ -117,7 +139,7 @@ def verify_corrected_design(text: str, setups, member: str, side: str, res) -> N
     from ..io.design_file import parse_design
 
     spec = parse_design(text, source="<corrected design>")
-    new = setup_flanks(spec, blank_from_design(spec))
+    new, _ = flank_setups(spec, blank_from_design(spec))
     m, s = Member(member), Side(side)
     for key, st in setups.items():
         want = res.settings if key == (m, s) else st.settings

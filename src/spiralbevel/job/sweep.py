@@ -1,12 +1,12 @@
 """Misalignment sweeps of a face-milled pair: TCA at every point of a grid of misalignments, in parallel with dask.
+A hypoid pair is swept through its offset kinematics with the misalignments on top (``job/sweep_hypoid.py``).
 
 The grid points are dealt into a few interleaved batches per worker (:func:`sweep_batch`, one dask task each: the
 per-task overhead of the scheduler, a few ms, is paid a few times per worker instead of once per case). Each worker
 process rebuilds the pair from the design (a pydantic model as JSON: small to ship) once and keeps it for all its
-batches. With dask
-installed (extra ``dist``) the batches run on a pool of local processes that is kept for the next sweep of the session,
-or on a cluster given by its scheduler address (``dask.distributed``, ``--scheduler tcp://host:8786``); without dask,
-one after the other in this process.
+batches. With dask installed (extra ``dist``) the batches run on a pool of local processes that is kept for the next
+sweep of the session, or on a cluster given by its scheduler address (``dask.distributed``, ``--scheduler
+tcp://host:8786``); without dask, one after the other in this process.
 """
 
 from __future__ import annotations
@@ -107,6 +107,10 @@ def _pair(spec_json: str, side: str):
     blank = blank_from_design(spec)
     if spec.flank.kind == "log-spiral":
         return _logspiral_pair(spec, blank, side)
+    if float(blank.a) != 0.0:
+        from .sweep_hypoid import hypoid_sweep_pair
+
+        return hypoid_sweep_pair(spec, blank, side)
     setups = setup_flanks(spec, blank)
     s1, s2 = PAIR_SIDES[side]
     from ..conventions import Member

@@ -152,6 +152,8 @@ class NormalDeviation:
             self.contains = base.contains
         if hasattr(base, "boundary_margins"):
             self.boundary_margins, self.boundary_names = base.boundary_margins, base.boundary_names
+        if getattr(base, "boundary_jet", None) is not None:
+            self.boundary_jet = base.boundary_jet  # the margins are the base's (parameters unchanged)
 
     def evaluate(self, params):
         r, n, dr, dn = surface_derivatives(self.base, params)

@@ -65,6 +65,22 @@ class GeneratedSurface:
         prm = self._prm()
         return None if prm is None else (1, prm)
 
+    @property
+    def boundary_jet(self):
+        """``(kind, prm)`` of the compiled boundary margins with their gradients
+        (:func:`spiralbevel._core.tca_edge.margins`, kind ``MARGIN_GENERATED``; the same margins as
+        :meth:`boundary_margins`), or None without a compiled jet."""
+        prm = self._prm()
+        if prm is None:
+            return None
+        if getattr(self, "_bprm_src", None) is not prm:
+            ol, gen = self.flank.outline, self.flank.generator
+            head = [math.sin(ol.delta), math.cos(ol.delta), ol.Ri, ol.Re, ol.ham, ol.Rm,
+                    math.tan(ol.delta_a - ol.delta), gen.cp["u_j"]]
+            self._bprm = np.concatenate([np.array(head, float), prm])
+            self._bprm_src = prm
+        return 1, self._bprm
+
     def _prm(self):
         """Parameter vector of :mod:`spiralbevel._core.generation_blade_jet`, rebuilt when the generator's parameter
         dicts are replaced (solvers that vary a setting swap ``generator.mp``)."""
@@ -125,7 +141,16 @@ class GeneratedSurface:
 
     def boundary_margins(self, params):
         """Signed margins (..., 4) of (phi, psi_c) to the flank boundaries ``boundary_names`` (>= 0 on the flank):
-        R - R_i and R_e - R (mm, toe and heel), h_face(R) - h (mm, top edge) and u - u_j (mm, fillet junction)."""
+        R - R_i and R_e - R (mm, toe and heel), h_face(R) - h (mm, top edge) and u - u_j (mm, fillet junction).
+        Compiled (:func:`spiralbevel._core.tca_edge.margins`, the margins of edge contact); numpy for a per-system
+        offset law."""
+        params = np.asarray(params, float)
+        b = self.boundary_jet
+        if b is not None:
+            from .._core import tca_edge as _ke
+
+            g, _ = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(params.reshape(-1, 2)))
+            return g.reshape(params.shape[:-1] + (4,))
         S, u, _ = self._jet(params)
         r = S[..., 0]
         ol = self.flank.outline

@@ -13,69 +13,103 @@ surface contact solve the five equations
     n_B . t_A = 0,  t_A = R_A (r_A,u g_v - r_A,v g_u)/|.|     (1: tangency of the curve to B)
 
 (the same unknowns and assembly pose as the surface contact of :mod:`spiralbevel.meshing.contact_problem`). The
-Jacobian is by forward differences, stacked into one batched evaluation per Newton iteration; the boundary
-gradient (g_u, g_v) likewise. Edge solves are few (only pairs whose surface contact leaves a flank), so their cost
-is small next to the surface solve.
+Newton is compiled (:mod:`spiralbevel._core.tca_edge`: analytic Jacobian from the surface jets and the analytic
+margin gradients, a forward difference of the curve tangent for its q_A-derivatives). Surfaces with compiled jets
+and margins (``jet``, ``boundary_jet``) run entirely in compiled code; others are evaluated by numpy between the
+compiled iterations (margins without ``boundary_jet``: ``boundary_margins`` with central differences).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .._core import tca_batch as _b
+from .._core import tca_edge as _ke
+from .._core.jets import GENERATED
 from .contact_surface import surface_derivatives
 
-__all__ = ["solve_edge_contacts", "project_to_boundary"]
+__all__ = ["solve_edge_contacts", "edge_stage"]
 
-#: central-difference steps of the boundary gradient and of the Jacobian (surface parameters, rad of phi2)
+#: step of the forward difference of the curve tangent (surface parameters), and of the central difference of the
+#: margin gradient of surfaces without compiled margins
+_H_TAU = 1e-7
 _H_PARAM = 1e-6
-_H_PHI = 1e-8
+#: rank threshold of the Newton step (:func:`spiralbevel._core.tca_newton.step`)
+_RCOND = 1e-12
 
 
-def _margin_and_grad(surface, q, e):
-    """g(q) and its gradient (..., 2) for boundary index ``e (...)`` by central differences (one stacked call)."""
-    h = _H_PARAM
-    st = np.stack([q, q + (h, 0), q - (h, 0), q + (0, h), q - (0, h)], 0)  # (5, ..., 2)
+def _boundary(surface):
+    """``(kind, prm)`` of a surface's compiled margins, or None."""
+    b = getattr(surface, "boundary_jet", None)
+    if b is None:
+        return None
+    return int(b[0]), np.ascontiguousarray(b[1], float)
+
+
+def _shares(kind, prm, b):
+    """True where the margins ``b`` of a generated flank evaluate the surface's own jet ``(kind, prm)``."""
+    return bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and np.array_equal(b[1][8:], prm))
+
+
+def _all_margins(surface, q):
+    """All boundary margins (m, k) of ``surface`` at ``q (m, 2)``: compiled where it has ``boundary_jet``."""
+    b = _boundary(surface)
+    if b is not None:
+        return _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))[0]
     with np.errstate(invalid="ignore"):
-        g = np.asarray(surface.boundary_margins(st), float)  # (5, ..., k)
-    g = np.take_along_axis(g, np.broadcast_to(e[None, ..., None], g.shape[:-1] + (1,)), -1)[..., 0]
+        return np.asarray(surface.boundary_margins(q), float)
+
+
+def _margin_jets(surface, q, e):
+    """Margin ``e (m,)`` and its gradient of ``surface`` at ``q (m, 2)``: (g (m,), dg (m, 2))."""
+    b = _boundary(surface)
+    m = np.arange(len(q))
+    if b is not None:
+        g, dg = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))
+        return g[m, e], dg[m, e]
+    h = _H_PARAM
+    st = np.stack([q, q + (h, 0), q - (h, 0), q + (0, h), q - (0, h)], 0)  # (5, m, 2)
+    with np.errstate(invalid="ignore"):
+        g = np.asarray(surface.boundary_margins(st), float)[:, m, e]  # (5, m)
     return g[0], np.stack([(g[1] - g[2]) / (2 * h), (g[3] - g[4]) / (2 * h)], -1)
 
 
-def project_to_boundary(surface, q, e, iterations=4):
-    """Points of boundary ``e (m,)`` near the parameters ``q (m, 2)``: Newton steps along the margin gradient."""
-    q = np.array(q, float)
-    for _ in range(iterations):
-        g, dg = _margin_and_grad(surface, q, e)
+def _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter):
+    """The edge Newton with the surfaces evaluated by numpy between compiled iterations; ``x`` updated in place."""
+    m = len(x)
+    conv = np.zeros(m, bool)
+    ndot = np.full(m, np.nan)
+    active = np.ones(m, bool)
+    h = _H_TAU
+    pert = np.array([[0, 0], [h, 0], [0, h]], float)
+    surfs = (prob.pinion, prob.gear)
+    d, M2, _ = prob._const
+    for _ in range(max_iter + 1):
+        a = np.flatnonzero(active)
+        if not a.size:
+            break
+        k = a.size
+        SA, SB = np.empty((k, 3, 3, 6)), np.empty((k, 3, 6))
+        gA, dgA = np.empty((k, 3)), np.empty((k, 3, 2))
+        for A in (0, 1):
+            s = member[a] == A
+            if not s.any():
+                continue
+            qa = (x[a[s], 2 * A:2 * A + 2][:, None, :] + pert).reshape(-1, 2)
+            with np.errstate(all="ignore"):
+                SA[s] = _b.stack_state(*surface_derivatives(surfs[A], qa)).reshape(-1, 3, 3, 6)
+                SB[s] = _b.stack_state(*surface_derivatives(surfs[1 - A], x[a[s], 2 - 2 * A:4 - 2 * A]))
+                g, dg = _margin_jets(surfs[A], qa, np.repeat(edge[a[s]], 3))
+            gA[s], dgA[s] = g.reshape(-1, 3), dg.reshape(-1, 3, 2)
+        xa = np.ascontiguousarray(x[a])
+        state, nd = np.empty(k, np.int64), np.empty(k)
         with np.errstate(all="ignore"):
-            q = q - (g / np.einsum("mi,mi->m", dg, dg))[:, None] * dg
-    return q
-
-
-def _residual(prob, x, phi1_eff, member, e):
-    """F (m, 5) of the edge equations at x (m, 5); member (m,) 0 = pinion edge against the gear flank, 1 = gear
-    edge against the pinion flank; e (m,) boundary index of that member's ``boundary_names``."""
-    r1, n1, dr1, _ = surface_derivatives(prob.pinion, x[:, 0:2])
-    r2, n2, dr2, _ = surface_derivatives(prob.gear, x[:, 2:4])
-    R1, R2, o1, o2 = prob.pose(phi1_eff, x[:, 4])
-    F = np.empty(x.shape[:-1] + (5,))
-    F[:, 0:3] = o1 + np.einsum("mij,mj->mi", R1, r1) - o2 - np.einsum("mij,mj->mi", R2, r2)
-    g = np.full(len(x), np.nan)
-    dg = np.full((len(x), 2), np.nan)
-    for m, surf, sl in ((0, prob.pinion, slice(0, 2)), (1, prob.gear, slice(2, 4))):
-        s = member == m
-        if s.any():
-            g[s], dg[s] = _margin_and_grad(surf, x[s, sl], e[s])
-    pin = (member == 0)[:, None]
-    drA = np.where(pin[..., None], dr1, dr2)
-    RA = np.where(pin[..., None], R1, R2)
-    nB = np.where(pin, np.einsum("mij,mj->mi", R2, n2), np.einsum("mij,mj->mi", R1, n1))
-    t = drA[..., 0] * dg[:, 1:2] - drA[..., 1] * dg[:, 0:1]
-    t = np.einsum("mij,mj->mi", RA, t)
-    with np.errstate(all="ignore"):
-        t = t / np.linalg.norm(t, axis=-1, keepdims=True)
-    F[:, 3] = g
-    F[:, 4] = np.einsum("mi,mi->m", nB, t)
-    return F
+            _ke.edge_step_batch(SA, gA, dgA, SB, np.ascontiguousarray(member[a]), c1[a], s1[a], xa, d, M2, h, tol,
+                                _RCOND, state, nd)
+        x[a], ndot[a] = xa, nd
+        conv[a[state == 1]] = True
+        active[a[state != 0]] = False
+    return conv, ndot
 
 
 def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30):
@@ -94,55 +128,45 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
     edge : (m,) int
         Index into that member's ``boundary_names``.
     tol : float, mm
-        Tolerance on the point coincidence (the boundary equation to 1e-12, the tangency to 1e-9: the
-        boundary gradient is a central difference, and the TE is stationary there).
+        Tolerance on the point coincidence (the boundary equation to 1e-12, the tangency to 1e-11:
+        :mod:`spiralbevel._core.tca_edge`).
+    max_iter : int
+        Newton iterations at most (a step is limited to 2 parameter units and 0.05 rad of phi2).
 
     Returns
     -------
     x : (m, 5) float
     converged : (m,) bool
+    ndot : (m,) float
+        n1 . n2 of the fixed-frame unit normals at x (about -1 at a contact).
     """
-    phi1_eff = np.asarray(phi1_eff, float)
-    x = np.array(x0, float)
-    member = np.asarray(member, int)
-    edge = np.asarray(edge, int)
-    m = len(x)
-    if m == 0:
-        return x, np.zeros(0, bool)
-    hvec = np.array([_H_PARAM] * 4 + [_H_PHI])
-    conv = np.zeros(m, bool)
-    active = np.ones(m, bool)
-    for _ in range(max_iter):
-        a = np.flatnonzero(active)
-        if not a.size:
-            break
-        xa = x[a]
-        # centre and +h along each unknown, one stacked evaluation (6 per system; forward differences: the
-        # Jacobian only steers Newton, the residual is exact)
-        pert = np.concatenate([np.zeros((1, 5)), np.diag(hvec)], 0)  # (6, 5)
-        xs = (xa[:, None, :] + pert[None]).reshape(-1, 5)
-        rep = lambda v: np.repeat(v, 6, axis=0)  # noqa: E731
-        Fs = _residual(prob, xs, rep(phi1_eff[a]), rep(member[a]), rep(edge[a])).reshape(len(a), 6, 5)
-        F = Fs[:, 0]
-        J = np.swapaxes((Fs[:, 1:6] - F[:, None]) / hvec[None, :, None], 1, 2)  # (k, 5 eq, 5 unknowns)
-        done = (np.max(np.abs(F[:, 0:3]), axis=1) < tol) & (np.abs(F[:, 3]) < 1e-12) & (np.abs(F[:, 4]) < 1e-9)
-        bad = ~np.all(np.isfinite(F), axis=1) | ~np.all(np.isfinite(J), axis=(1, 2))
-        conv[a[done & ~bad]] = True
-        active[a[done | bad]] = False
-        go = ~done & ~bad
-        if not go.any():
-            break
-        with np.errstate(all="ignore"):
-            try:
-                dx = np.linalg.solve(J[go], -F[go][..., None])[..., 0]
-            except np.linalg.LinAlgError:
-                dx = np.stack([np.linalg.lstsq(Jk, -Fk, rcond=None)[0] for Jk, Fk in zip(J[go], F[go])])
-        # limit the step (parameters: 2 units; phi2: 0.05 rad): far starts are not trusted to converge
-        lim = np.array([2.0, 2.0, 2.0, 2.0, 0.05])
-        with np.errstate(divide="ignore"):
-            s = np.min(np.where(np.abs(dx) > lim, lim / np.abs(dx), 1.0), axis=1, initial=1.0)
-        x[a[go]] = xa[go] + s[:, None] * dx
-    return x, conv
+    phi1_eff = np.asarray(phi1_eff, float).reshape(-1)
+    x = np.array(x0, float, order="C").reshape(-1, 5)
+    member = np.ascontiguousarray(member, np.int64)
+    edge = np.ascontiguousarray(edge, np.int64)
+    if len(x) == 0:
+        return x, np.zeros(0, bool), np.zeros(0)
+    c1, s1 = np.cos(phi1_eff), np.sin(phi1_eff)
+    b1, b2 = _boundary(prob.pinion), _boundary(prob.gear)
+    if prob._jets is not None and b1 is not None and b2 is not None:
+        (k1, p1), (k2, p2) = prob._jets
+        d, M2, _ = prob._const
+        conv, ndot, _ = _ke.edge_newton_jets(k1, p1, b1[0], b1[1], _shares(k1, p1, b1), k2, p2, b2[0], b2[1],
+                                             _shares(k2, p2, b2), c1, s1, x, member, edge, d, M2, _H_TAU, tol,
+                                             max_iter, _RCOND)
+        return x, conv, ndot
+    conv, ndot = _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter)
+    return x, conv, ndot
+
+
+def _best_of_others(te):
+    """For every entry of ``te (n, P)`` the largest value of the other entries of its row (-inf for P = 1)."""
+    n, P = te.shape
+    if P == 1:
+        return np.full((n, 1), -np.inf)
+    top = np.sort(te, axis=1)
+    first = np.argmax(te, axis=1)
+    return np.where(np.arange(P)[None, :] == first[:, None], top[:, -2:-1], top[:, -1:])
 
 
 def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_tie=1e-11):
@@ -204,23 +228,20 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         if not len(ii):
             return np.zeros(0, bool)
         phi_eff = phi1[ii] + pairs[jj] * T1
-        xs, conv = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
+        xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
         ok = conv.copy()
-        with np.errstate(invalid="ignore"):
-            g1 = np.asarray(prob.pinion.boundary_margins(xs[:, 0:2]), float)
-            g2 = np.asarray(prob.gear.boundary_margins(xs[:, 2:4]), float)
         tolm = 1e-9
-        for m, g in ((0, g1), (1, g2)):
+        for m in (0, 1):
             s = mem == m
-            gg = g[s].copy()
+            if not s.any():
+                continue
+            gg = _all_margins(surfs[m], xs[s, 2 * m:2 * m + 2])
             gg[np.arange(s.sum()), ee[s]] = np.inf  # the edge's own margin is 0 by construction
-            ok[s] &= np.all(np.nan_to_num(gg, nan=-1.0) >= -tolm, axis=1)
+            with np.errstate(invalid="ignore"):
+                ok[s] &= np.all(gg >= -tolm, axis=1)  # NaN (no surface) fails
         ok &= np.where(mem == 0, surface_contains(prob.gear, xs[:, 2:4]), surface_contains(prob.pinion, xs[:, 0:2]))
-        _, n1 = prob.pinion.evaluate(xs[:, 0:2])
-        _, n2 = prob.gear.evaluate(xs[:, 2:4])
-        R1, R2, _, _ = prob.pose(phi_eff, xs[:, 4])
         with np.errstate(invalid="ignore"):
-            ok &= np.einsum("mi,mi->m", np.einsum("mij,mj->mi", R1, n1), np.einsum("mij,mj->mi", R2, n2)) < -0.5
+            ok &= ndot < -0.5
             te = te_of(xs[:, 4], ii, jj)
             ok &= np.abs(te) < np.pi / prob.z2
         new = np.zeros(len(ii), bool)
@@ -238,14 +259,12 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     te_phys = np.where(phys, te_surface, -np.inf)
     # an edge contact trails the extended surfaces' contact beyond that edge (it is a touch of a part of the same
     # flank): pairs whose extended contact trails the best real contact of another pair cannot lead, are not solved
-    best_other = np.array([[np.max(np.delete(te_phys[i], j), initial=-np.inf) for j in range(P)] for i in range(n)])
+    best_other = _best_of_others(te_phys)
     ii, jj = np.nonzero((status == 2) & ~(te_surface < best_other - te_tie))  # ContactStatus.EDGE
     mate = {"top": ("fillet", "root"), "fillet": ("top",), "root": ("top",)}
     I, Jp, M, E = [], [], [], []
     if ii.size:
-        with np.errstate(invalid="ignore"):
-            g = [np.asarray(surfs[0].boundary_margins(x[ii, jj, 0:2]), float),
-                 np.asarray(surfs[1].boundary_margins(x[ii, jj, 2:4]), float)]
+        g = [_all_margins(surfs[0], x[ii, jj, 0:2]), _all_margins(surfs[1], x[ii, jj, 2:4])]
         for a in range(ii.size):
             want = set()
             for m in (0, 1):
@@ -265,24 +284,32 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     # 1b. a pair whose surface solve is lost altogether next to a position where it touches on the real flanks: the
     # boundary nearest that contact on each member (and the mate's boundary that meets it) is tried from there
     seeds = {}
-    for i, j in zip(*np.nonzero(phys)):
-        for d in (-1, 1):
-            k = int(i + d)
-            if not (0 <= k < n) or phys[k, j] or (k, int(j)) in label:
+    # real contacts next to a position of the same pair that has none (d = -1: the one before is lost, +1: after)
+    lost = np.zeros((2, n, P), bool)
+    lost[0, 1:] = phys[1:] & ~phys[:-1]
+    lost[1, :-1] = phys[:-1] & ~phys[1:]
+    near = lost.any(axis=0)
+    g_phys = [np.full((n, P, len(names[m])), np.nan) for m in (0, 1)]
+    if near.any():
+        for m in (0, 1):
+            g_phys[m][near] = _all_margins(surfs[m], x[near][:, 2 * m:2 * m + 2])
+    dd, ii, jj = np.nonzero(lost)
+    for i, j, d in sorted(zip(ii.tolist(), jj.tolist(), (2 * dd - 1).tolist())):  # the order of (i, j, d)
+        k = i + d
+        if (k, j) in label:
+            continue
+        x0 = x[i, j].copy()
+        x0[4] -= prob.ratio * (phi1[k] - phi1[i])
+        for m in (0, 1):
+            gm = g_phys[m][i, j]
+            usable = [e for e, nm in enumerate(names[m]) if nm != "generated" and np.isfinite(gm[e])]
+            if not usable:
                 continue
-            x0 = x[i, j].copy()
-            x0[4] -= prob.ratio * (phi1[k] - phi1[i])
-            for m in (0, 1):
-                with np.errstate(invalid="ignore"):
-                    gm = np.asarray(surfs[m].boundary_margins(x[i, j][None, 2 * m:2 * m + 2]), float)[0]
-                usable = [e for e, nm in enumerate(names[m]) if nm != "generated" and np.isfinite(gm[e])]
-                if not usable:
-                    continue
-                e = min(usable, key=lambda e: gm[e])
-                seeds.setdefault((k, int(j), m, e), x0)
-                for other in mate.get(names[m][e], ()):
-                    if other in names[1 - m]:
-                        seeds.setdefault((k, int(j), 1 - m, names[1 - m].index(other)), x0)
+            e = min(usable, key=lambda e: gm[e])
+            seeds.setdefault((k, j, m, e), x0)
+            for other in mate.get(names[m][e], ()):
+                if other in names[1 - m]:
+                    seeds.setdefault((k, j, 1 - m, names[1 - m].index(other)), x0)
     if seeds:
         keys = list(seeds)
         try_solve(np.array([q[0] for q in keys]), np.array([q[1] for q in keys]), np.array([q[2] for q in keys]),
@@ -292,7 +319,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     # lost there altogether), from the neighbour's edge solution
     def leads(i, j):
         """Pair j's edge contact at position i leads the surface contacts of the other pairs there."""
-        return te_edge[i, j] >= np.max(np.delete(te_phys[i], j), initial=-np.inf)
+        return te_edge[i, j] >= best_other[i, j]
 
     front = {key for key in label if leads(*key)}
     while front:

@@ -58,6 +58,7 @@ class LogSpiralSurface:
     phi_range: tuple | None = None
     reference_params: tuple | None = None
     _prm: np.ndarray = field(init=False, repr=False, compare=False)
+    _bprm: np.ndarray = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
         if not (self.rho0 > 0 and 0 < self.delta < np.pi / 2 and 0 < abs(self.beta) < np.pi / 2):
@@ -68,6 +69,12 @@ class LogSpiralSurface:
                                        "psi = 0 is the singular (cuspidal) edge, "
                                        "docs/theory/logspiral.md#singular-edge")
         object.__setattr__(self, "_prm", _lsj.parameters(self.rho0, self.delta, self.beta, self.azimuth))
+        psi_lo, psi_hi = sorted(self.psi_range) if self.psi_range is not None else (0.0, 0.0)
+        phi_lo, phi_hi = sorted(self.phi_range) if self.phi_range is not None else (0.0, 0.0)
+        b = [np.sin(self.delta), psi_lo, psi_hi, float(psi_lo > 0), phi_lo, phi_hi,
+             float(np.sin(self.delta) / np.tan(self.beta) > 0), float(self.psi_range is not None),
+             float(self.phi_range is not None)]
+        object.__setattr__(self, "_bprm", np.array(b, float))
 
     def _kernel(self, params, deriv):
         """Compiled jet (:mod:`spiralbevel._core.logspiral_jet`) at ``params (..., 2)``: r, n_out and optionally
@@ -85,6 +92,13 @@ class LogSpiralSurface:
     def jet(self):
         """``(kind, prm)`` of the compiled jet (:mod:`spiralbevel._core.jets`) that compiled TCA evaluates."""
         return _jets.LOGSPIRAL, self._prm
+
+    @property
+    def boundary_jet(self):
+        """``(kind, prm)`` of the compiled boundary margins with their gradients
+        (:func:`spiralbevel._core.tca_edge.margins`, kind ``MARGIN_LOGSPIRAL``; the margins of
+        :meth:`boundary_margins`)."""
+        return 0, self._bprm
 
     def evaluate(self, params):
         """Points (..., 3) mm and outward normals (..., 3) at ``params = (varphi, phi)``."""

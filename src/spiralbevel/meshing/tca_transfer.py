@@ -4,7 +4,8 @@ Between two positions where the pair in contact changes from a to b, the transfe
 d(phi1) = TE_b(phi1) - TE_a(phi1), each TE from its own contact solved at that phi1 (a surface contact by the
 Newton solver of :class:`~spiralbevel.meshing.contact_problem.ContactProblem`, an edge contact by
 :func:`~spiralbevel.meshing.tca_edge.solve_edge_contacts`), not interpolated between the positions. The root is
-bracketed by the two positions and found by the Illinois variant of regula falsi, all transfers of a cycle at once.
+bracketed by the two positions and found by the Illinois variant of regula falsi, all transfers of a cycle at once
+(its bookkeeping compiled: :mod:`spiralbevel._core.tca_transfer`).
 The TE there is the envelope's local minimum (the kink where the curves cross), which a sampled envelope misses by
 O(spacing): it is reported with the transfer and enters the extremes of the TE curve.
 """
@@ -13,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._core import tca_transfer as _kt
 from .tca_edge import solve_edge_contacts
 
 __all__ = ["exact_transfers"]
@@ -30,7 +32,7 @@ def _te_at(prob, phi, pair_k, kind, x0, te_of_phi, tol):
         x[s], ok[s] = xs, conv
     e = ~s
     if e.any():
-        xe, conv = solve_edge_contacts(prob, phi_eff[e], x[e], kind[e] % 2, kind[e] // 2, tol=tol)
+        xe, conv, _ = solve_edge_contacts(prob, phi_eff[e], x[e], kind[e] % 2, kind[e] // 2, tol=tol)
         x[e], ok[e] = xe, conv
     te = np.where(ok, te_of_phi(x[:, 4], pair_k, phi), np.nan)
     return te, x
@@ -95,38 +97,16 @@ def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10
     cross = np.isfinite(d_lo) & np.isfinite(d_hi) & (np.sign(d_lo) != np.sign(d_hi))
     phi_t = 0.5 * (lo + hi)
     te_t = np.full(m, np.nan)
-    side = np.zeros(m, int)
+    side = np.zeros(m, np.int64)
+    kk, kind2 = np.r_[pairs[A], pairs[B]], np.r_[ka, kb]
     for _ in range(iterations):
         c = np.flatnonzero(cross)
         if not c.size:
             break
-        with np.errstate(all="ignore"):
-            p = hi[c] - d_hi[c] * (hi[c] - lo[c]) / (d_hi[c] - d_lo[c])
-        p = np.where(np.isfinite(p) & (p > lo[c]) & (p < hi[c]), p, 0.5 * (lo[c] + hi[c]))
-        t, xn = _te_at(prob, np.r_[p, p], np.r_[pairs[A[c]], pairs[B[c]]], np.r_[ka[c], kb[c]],
-                       np.concatenate([xa[c], xb[c]]), te_of_phi, tol)
-        ta, tb, xa_new, xb_new = t[:c.size], t[c.size:], xn[:c.size], xn[c.size:]
-        d = tb - ta
-        good = np.isfinite(d)
-        xa[c[good]], xb[c[good]] = xa_new[good], xb_new[good]
-        phi_t[c] = p
-        te_t[c] = np.where(good, np.maximum(ta, tb), np.nan)
-        # lost a contact inside the interval: stop at the best estimate
-        cross[c[~good]] = False
-        c, d, p = c[good], d[good], p[good]
-        # |d| < 5e-11 rad = 1e-5 arcsec: with TE slopes of the order of 100 arcsec/rad the crossing's TE is then
-        # within 1e-5 arcsec too
-        done = (np.abs(d) < 5e-11) | ((hi[c] - lo[c]) < 1e-12)
-        # Illinois: halve the retained end's value when the same end is kept twice
-        left = np.sign(d) == np.sign(d_lo[c])
-        for sel_, keep_end in ((left, 1), (~left, -1)):
-            cc = c[sel_]
-            if keep_end == 1:  # root in [p, hi]
-                lo[cc], d_lo[cc] = p[sel_], d[sel_]
-                d_hi[cc] = np.where(side[cc] == 1, 0.5 * d_hi[cc], d_hi[cc])
-            else:
-                hi[cc], d_hi[cc] = p[sel_], d[sel_]
-                d_lo[cc] = np.where(side[cc] == -1, 0.5 * d_lo[cc], d_lo[cc])
-            side[cc] = keep_end
-        cross[c[done]] = False
+        p = _kt.illinois_propose(lo, hi, d_lo, d_hi, c)
+        cc = np.r_[c, c + m]
+        t, xn = _te_at(prob, np.r_[p, p], kk[cc], kind2[cc], np.concatenate([xa[c], xb[c]]), te_of_phi, tol)
+        good = np.empty(c.size, bool)
+        _kt.illinois_accept(c, p, t[:c.size], t[c.size:], lo, hi, d_lo, d_hi, side, phi_t, te_t, cross, good)
+        xa[c[good]], xb[c[good]] = xn[:c.size][good], xn[c.size:][good]
     return phi_t, te_t

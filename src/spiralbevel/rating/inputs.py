@@ -60,6 +60,8 @@ class RatingInput:
         ``"case-hardened"`` or ``"through-hardened"``: selects the life, size and roughness curves.
     load_cycles : float or None
         Number of load cycles of the pinion (the wheel's is this divided by u); None = long life (Z_NT = Y_NT = 1).
+    Z_Hyp : float or None
+        ISO 10300-2 hypoid factor of a hypoid pair (0 < Z_Hyp <= 1, required with an offset; unused without).
     """
 
     T1: float
@@ -82,6 +84,7 @@ class RatingInput:
     S_Fmin: float = 1.3
     material: str = "case-hardened"
     load_cycles: Optional[float] = None
+    Z_Hyp: Optional[float] = None
 
     def __post_init__(self):
         problems = []
@@ -110,6 +113,8 @@ class RatingInput:
         check("density", self.density, 0.0, 1e-4, "kg/mm^3", "0 < density <= 1e-4")
         check("S_Hmin", self.S_Hmin, 0.0, 10.0, "-", "0 < S_Hmin <= 10")
         check("S_Fmin", self.S_Fmin, 0.0, 10.0, "-", "0 < S_Fmin <= 10")
+        if self.Z_Hyp is not None:
+            check("Z_Hyp", self.Z_Hyp, 0.0, 1.0, "-", "0 < Z_Hyp <= 1")
         if self.load_cycles is not None:
             check("load_cycles", self.load_cycles, 0.0, 1e15, "-", "0 < N_L <= 1e15")
         for name, v, allowed in (("mounting", self.mounting, MOUNTINGS),

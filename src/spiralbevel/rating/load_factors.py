@@ -28,11 +28,17 @@ def nominal_forces(g: BlankData, T1: float, n1: float) -> dict:
     Returns
     -------
     dict
-        ``F_mt1`` = 2000 T1/dm1 (N, T1 in N m), ``F_vmt`` = F_mt1 (the virtual gear carries the same tangential
-        force, its torque scaled by dv1/dm1), ``v_mt`` = pi dm1 n1/60000 (m/s).
+        ``F_mt1`` = 2000 T1/dm1 (N, T1 in N m); ``F_vmt`` = F_mt1 cos(beta_v)/cos(beta_m1), the tangential force of
+        the virtual gear (the same normal force in the pitch plane at the mean spiral angle beta_v; = F_mt1 without
+        offset); ``v_mt`` = pi dm1 n1/60000 and ``v_mt2`` = pi dm2 n2/60000 (m/s), the pitch line velocities of
+        pinion and wheel at the mean point (equal without offset; a hypoid pinion's is larger by
+        cos(beta_m2)/cos(beta_m1)).
     """
     F_mt1 = 2000.0 * T1 / g.dm1
-    return {"F_mt1": F_mt1, "F_vmt": F_mt1, "v_mt": math.pi * g.dm1 * n1 / 60000.0}
+    beta_v = 0.5 * (g.beta_m1 + g.beta_m2)
+    n2 = n1 * g.z1 / g.z2
+    return {"F_mt1": F_mt1, "F_vmt": F_mt1 * math.cos(beta_v) / math.cos(g.beta_m1),
+            "v_mt": math.pi * g.dm1 * n1 / 60000.0, "v_mt2": math.pi * g.dm2 * n2 / 60000.0}
 
 
 def running_in(f_pt: float, material: str, sigma_Hlim: float, v: float) -> float:
@@ -79,6 +85,7 @@ def dynamic_factor(g: BlankData, v: dict, F_mt1: float, K_A: float, n1: float, f
     v : dict
         Virtual gears (:func:`~spiralbevel.rating.virtual.virtual_gears`).
     F_mt1 : float, N
+        Tangential force of the virtual gear, F_vmt (= F_mt1 without offset).
     K_A : float
     n1 : float, 1/min
     f_p_eff : float, um
@@ -128,21 +135,24 @@ def face_load_factors(g: BlankData, mounting: str, contact_pattern: str) -> dict
 
     Notes
     -----
-    K_F0, the lengthwise curvature factor of spiral bevel gears, is 0.211 (rc0/Rm)^q + 0.789 with
-    q = 0.279/log10(sin beta_m), limited to 1 ... 1.15 (1 for beta_m = 0).
+    K_F0, the lengthwise curvature factor of spiral bevel gears, is 0.211 (rc0/Rm2)^q + 0.789 with
+    q = 0.279/log10(sin beta_m2), limited to 1 ... 1.15 (1 for beta_m2 = 0): the wheel's mean cone distance and
+    spiral angle (Rm2 = Rm, beta_m2 = beta_m without offset).
     """
     K_be = K_HBETA_BE[contact_pattern][mounting]
     K_Hbeta = 1.5 * K_be
-    beta = 0.5 * (g.beta_m1 + g.beta_m2)
+    beta = g.beta_m2
+    Rm2 = g.Rm2 if g.Rm2 > 0.0 else g.Rm
     if beta > 1e-9:
         q = 0.279 / math.log10(math.sin(beta))
-        K_F0 = min(max(0.211 * (g.rc0 / g.Rm) ** q + 0.789, 1.0), 1.15)
+        K_F0 = min(max(0.211 * (g.rc0 / Rm2) ** q + 0.789, 1.0), 1.15)
     else:
         K_F0 = 1.0
     return {"K_Hbeta-be": K_be, "K_Hbeta": K_Hbeta, "K_F0": K_F0, "K_Fbeta": K_Hbeta / K_F0}
 
 
-def transverse_load_factor(v: dict, F_mtH: float, f_pt: float, y_alpha: float, Z_LS: float, Y_eps: float) -> dict:
+def transverse_load_factor(v: dict, F_mtH: float, f_pt: float, y_alpha: float, Z_LS: float, Y_eps: float,
+                           a_rel: float = 0.0) -> dict:
     """Transverse load factors K_Halpha and K_Falpha (Method B).
 
     Parameters
@@ -157,14 +167,23 @@ def transverse_load_factor(v: dict, F_mtH: float, f_pt: float, y_alpha: float, Z
         Running-in allowance.
     Z_LS, Y_eps : float
         Load sharing and contact ratio factors (for the upper limits).
+    a_rel : float
+        Relative hypoid offset 2|a|/dm2 (0 without offset).
 
     Notes
     -----
     X = c_gamma (f_pt - y_alpha)/(F_mtH/b); eps_vgamma <= 2: K = eps_vgamma/2 (0.9 + 0.4 X); eps_vgamma > 2:
     K = 0.9 + 0.4 sqrt(2 (eps_vgamma - 1)/eps_vgamma) X. K_Halpha = K limited to 1 ... eps_vgamma/(eps_valpha Z_LS^2);
-    K_Falpha = K limited to 1 ... eps_vgamma/(eps_valpha Y_eps).
+    K_Falpha = K limited to 1 ... eps_vgamma/(eps_valpha Y_eps). A hypoid pair's lengthwise sliding evens out the
+    pitch deviations: with a_rel = 2|a|/dm2 both factors fall linearly from these values at a_rel = 0 to 1 at
+    a_rel >= 0.1 (K - (K - 1) min(a_rel/0.1, 1); ``K_Halpha*``, ``K_Falpha*`` are the values before). This is
+    the reading that gives ISO/TR 10300-30 Sample 2's K_Halpha = 1.000 at a_rel = 0.211 (docs/rating.md).
     """
     e, ea = v["eps_vgamma"], v["eps_valpha"]
     X = C_GAMMA * (f_pt - y_alpha) / (F_mtH / v["b_v"])
     K = e / 2.0 * (0.9 + 0.4 * X) if e <= 2.0 else 0.9 + 0.4 * math.sqrt(2.0 * (e - 1.0) / e) * X
-    return {"K_Halpha": min(max(K, 1.0), e / (ea * Z_LS ** 2)), "K_Falpha": min(max(K, 1.0), e / (ea * Y_eps))}
+    KH = min(max(K, 1.0), e / (ea * Z_LS ** 2))
+    KF = min(max(K, 1.0), e / (ea * Y_eps))
+    w = min(a_rel / 0.1, 1.0)
+    return {"K_Halpha": KH - (KH - 1.0) * w, "K_Falpha": KF - (KF - 1.0) * w, "K_Halpha*": KH, "K_Falpha*": KF,
+            "a_rel": a_rel}

@@ -20,7 +20,7 @@ def _inv(a: float) -> float:
 
 
 def tooth_form(z_vn: float, mmn: float, alpha_n: float, rho_a0: float, h_a0: float, x_hm: float, x_sm: float,
-               d_van: float) -> dict:
+               d_van: float, alpha_nD: "float | None" = None) -> dict:
     """Critical root section, fillet radius, bending arm and the factors Y_Fa, Y_Sa (load at the tooth tip).
 
     Parameters
@@ -38,6 +38,9 @@ def tooth_form(z_vn: float, mmn: float, alpha_n: float, rho_a0: float, h_a0: flo
         Profile shift and thickness modification coefficients.
     d_van : float, mm
         Tip diameter of the virtual spur gear, d_vn + 2 ham.
+    alpha_nD : float or None, rad
+        Normal pressure angle of the loaded (drive) flank at the mean point, in Y_Fa's denominator; None: alpha_n.
+        They differ on a hypoid pair (alpha_nD = alpha_eD + alpha_lim), where alpha_n is the generated angle alpha_eD.
 
     Returns
     -------
@@ -53,7 +56,7 @@ def tooth_form(z_vn: float, mmn: float, alpha_n: float, rho_a0: float, h_a0: flo
     rho_F/mmn = rho_a0/mmn + 2G^2/(cos(theta) (z_vn cos^2(theta) - 2G)); with cos(alpha_an) = d_vn cos(alpha_n)/d_van,
     gamma_a = (pi/2 + 2 (x_hm tan(alpha_n) + x_sm))/z_vn + inv(alpha_n) - inv(alpha_an), alpha_Fan = alpha_an - gamma_a:
     h_Fa/mmn = ((cos(gamma_a) - sin(gamma_a) tan(alpha_Fan)) d_van/mmn - z_vn cos(pi/3 - theta) - G/cos(theta)
-    + rho_a0/mmn)/2; Y_Fa = 6 (h_Fa/mmn) cos(alpha_Fan)/((s_Fn/mmn)^2 cos(alpha_n));
+    + rho_a0/mmn)/2; Y_Fa = 6 (h_Fa/mmn) cos(alpha_Fan)/((s_Fn/mmn)^2 cos(alpha_nD));
     Y_Sa = (1.2 + 0.13 L_a) q_s^(1/(1.21 + 2.3/L_a)), L_a = s_Fn/h_Fa, q_s = s_Fn/(2 rho_F).
     """
     m = mmn
@@ -79,7 +82,8 @@ def tooth_form(z_vn: float, mmn: float, alpha_n: float, rho_a0: float, h_a0: flo
     alpha_Fan = alpha_an - gamma_a
     h_Fa = 0.5 * m * ((math.cos(gamma_a) - math.sin(gamma_a) * math.tan(alpha_Fan)) * d_van / m
                       - z_vn * math.cos(math.pi / 3.0 - theta) - G / c + rho_a0 / m)
-    Y_Fa = 6.0 * (h_Fa / m) * math.cos(alpha_Fan) / ((s_Fn / m) ** 2 * math.cos(alpha_n))
+    a_load = alpha_n if alpha_nD is None else alpha_nD
+    Y_Fa = 6.0 * (h_Fa / m) * math.cos(alpha_Fan) / ((s_Fn / m) ** 2 * math.cos(a_load))
     L_a = s_Fn / h_Fa
     q_s = s_Fn / (2.0 * rho_F)
     Y_Sa = (1.2 + 0.13 * L_a) * q_s ** (1.0 / (1.21 + 2.3 / L_a))

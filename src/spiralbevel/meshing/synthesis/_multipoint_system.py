@@ -1,14 +1,13 @@
 """The batched contact system of multi-point control (seed 001 Eqs. (16)-(17), docs/theory/tca.md, Eqs. (T5), (T8)), one
-per control point.
+per control point, solved by the compiled Newton of :mod:`spiralbevel._core.multipoint_newton`.
 
-Unknowns y = (u1, psi_c1, u2, psi_c2, phi2, E_m1): the blade parameters and cradle angles of the contact point on the
-pinion and on the gear, the gear rotation and the pinion's instantaneous blank offset (mm, user sign of
-``MachineSettings.blank_offset``). The cutter angles theta_1, theta_2 are eliminated in closed form by the equations of
-meshing of generation f_1 = f_2 = 0 (``_core.generation.solve_contact``), so the 8 x 8 system of docs/theory/tca.md,
-Eqs. (T5), (T8) becomes
-6 x 6 here:
+Unknowns z = (phi_1, psi_c1, phi_2, psi_c2, phi2, E_m1): the absolute cutter angles and cradle angles of the contact
+point on the pinion and on the gear (the (phi, psi_c) chart of ``GeneratedSurface``), the gear rotation and the pinion's
+instantaneous blank offset (mm, user sign of ``MachineSettings.blank_offset``). The blade parameters u_1, u_2 are
+eliminated by the equations of meshing of generation f_1 = f_2 = 0 (solved inside the compiled jet, which returns them),
+so the 8 x 8 system of docs/theory/tca.md, Eqs. (T5), (T8) becomes 6 x 6 here:
 
-    R(a1, phi1) r1(u1, psi_c1; E_m1, E_m1') - R(a2, phi2) R_y(S) r2(u2, psi_c2) = 0      (3, mm)
+    R(a1, phi1) r1(phi_1, psi_c1; E_m1, E_m1') - R(a2, phi2) R_y(S) r2(phi_2, psi_c2) = 0      (3, mm)
     L (n1 + n2) . t_a = 0,  L (n1 + n2) . t_b = 0                                        (2, mm)
     L [TE(phi2) - target] = 0                                                            (1, mm; Eq. (17))
 
@@ -22,19 +21,52 @@ the mean contact point the last equation is L (E_m1 - E_m10) = 0 instead: it fix
 
 from __future__ import annotations
 
-import copy
+from dataclasses import dataclass
 
 import numpy as np
 
-from ..._core.newton import solve_batched
-from ..._core.rotations import rot_z
+from ...conventions import Hand
 
-#: Newton step caps: u1 mm, psi_c1 rad, u2 mm, psi_c2 rad, phi2 rad, E_m1 mm
-MAX_STEP = np.array([1.0, 0.02, 1.0, 0.02, 0.01, 0.5])
+#: Newton step caps: phi_1 rad, psi_c1 rad, phi_2 rad, psi_c2 rad, phi2 rad, E_m1 mm
+MAX_STEP = np.array([0.02, 0.02, 0.02, 0.02, 0.01, 0.5])
+
+
+@dataclass
+class SystemResult:
+    """Outcome of :meth:`MultiPointSystem.solve` (per system, like ``NewtonResult``).
+
+    Attributes
+    ----------
+    x : (m, 6) float
+        z = (phi_1 rad, psi_c1 rad, phi_2 rad, psi_c2 rad, phi2 rad, E_m1 mm).
+    u : (m, 2) float, mm
+        Blade parameters u_1, u_2 of the two contact points at ``x``.
+    converged : (m,) bool
+    residual : (m,) float, mm
+    iterations : int
+    """
+
+    x: np.ndarray
+    u: np.ndarray
+    converged: np.ndarray
+    residual: np.ndarray
+    iterations: int
+
+    @property
+    def params(self):
+        """(u mm, psi_c rad) of the contact points on the pinion and on the gear, (m, 2) each."""
+        return np.stack([self.u[:, 0], self.x[:, 1]], -1), np.stack([self.u[:, 1], self.x[:, 3]], -1)
+
+
+def _kernel_params(gen, **mp):
+    """Parameter vector of the compiled generated-flank jet of ``gen`` (member frame, no phasing turn)."""
+    from ..._core import generation_blade_jet as _gbj  # numba stays off the import path of the CLI
+
+    return _gbj.parameters(gen.cp, dict(gen.mp, **mp), gen.hand is Hand.RIGHT, 0.0)
 
 
 class MultiPointSystem:
-    """Batched residual of the control-point systems of one synthesized pair.
+    """Compiled control-point systems of one synthesized pair.
 
     Parameters
     ----------
@@ -59,44 +91,46 @@ class MultiPointSystem:
         a = np.cross(n, [1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.cross(n, [0.0, 1.0, 0.0])
         a /= np.linalg.norm(a)
         self.t_a, self.t_b = a, np.cross(n, a)
-
-    # ------------------------------------------------------------------ pinion with a local offset law
-    def pinion(self, u, psi, value, rate):
-        """Pinion flank points and outward normals (member frame) at (u mm, psi_c rad), generated with the blank
-        offset E_m1 = ``value`` (mm) and dE_m1/dpsi_c = ``rate`` (mm/rad) at that instant; all broadcast together."""
-        gen = copy.copy(self.gen)
-        u, psi, value, rate = np.broadcast_arrays(*(np.asarray(v, float) for v in (u, psi, value, rate)))
-        # local law E(p) = value + rate (p - psi), kernel sign (MachineSettings.kernel_params): E enters negated
-        gen.mp = dict(self.gen.mp, E=-(value - rate * psi), E_rate=-rate, E_poly=(), E_table=None)
-        fp = gen.evaluate(u, psi, curvature=False)
-        return fp.points, fp.normals
+        # the pinion's offset law is set per system inside the kernel (E and E_rate of the vector)
+        self.prm1 = _kernel_params(self.gen, E=0.0, E_rate=0.0, E_poly=(), E_table=None)
+        self.prm2 = _kernel_params(self.gear.generator)
+        self._jets = (self.prm1, self.prm2)
 
     def te(self, x, phi2, phi2_ref):
         """TE (rad) of a contact at pinion rotation phi10 + x and gear rotation phi2 (docs/conventions.md)."""
         return self.drive * (-(np.asarray(phi2) - phi2_ref) - self.ratio * np.asarray(x))
 
-    def residual(self, y, x, target, rate, phi2_ref, mean):
-        """F (m, 6) mm at y (m, 6) for offsets x (m,) rad, targets (m,) rad, rates (m,) mm/rad, mean mask (m,)."""
-        r1, n1 = self.pinion(y[:, 0], y[:, 1], y[:, 5], rate)
-        fp = self.gear.evaluate(y[:, 2], y[:, 3], curvature=False)
-        R1 = rot_z(self.phi1_mean + x)
-        R2 = self.kin.gear_to_fixed(y[:, 4])
-        d = np.einsum("mij,mj->mi", R1, r1) - np.einsum("mij,mj->mi", R2, fp.points)
-        s = np.einsum("mij,mj->mi", R1, n1) + np.einsum("mij,mj->mi", R2, fp.normals)
-        L = self.length
-        last = np.where(mean, y[:, 5] - self.offset0, self.te(x, y[:, 4], phi2_ref) - target)
-        return np.concatenate([d, L * np.stack([s @ self.t_a, s @ self.t_b, last], -1)], -1)
+    def _constants(self, phi2_ref):
+        return np.array([self.phi1_mean, self.kin.shaft_angle, self.ratio, float(self.drive), float(phi2_ref),
+                         self.length, self.offset0, *self.t_a, *self.t_b])
 
-    def solve(self, y0, x, target, rate, phi2_ref, mean, tol=1e-11, max_iter=40):
-        """Batched Newton (forward-difference Jacobian) of all systems at once; returns a ``NewtonResult``."""
-        x, target, rate, mean = (np.asarray(v) for v in (x, target, rate, mean))
+    def solve(self, y0, x, target, rate, phi2_ref, mean, tol=1e-11, max_iter=40) -> SystemResult:
+        """Newton on every system from ``y0 (m, 6)`` (z, see module) for offsets ``x (m,)`` rad, TE targets ``(m,)``
+        rad, offset rates ``(m,)`` mm/rad and the mean mask ``(m,)``; tolerance on max|F| in mm."""
+        from ..._core.multipoint_newton import solve_systems
 
-        def fun(y):
-            return self.residual(y, x, target, rate, phi2_ref, mean)
+        m = len(np.atleast_1d(x))
+        def vec(v, dt=float):
+            return np.ascontiguousarray(np.broadcast_to(np.asarray(v, dt), (m,)))
 
-        return solve_batched(fun, y0, tol=tol, max_iter=max_iter, max_step=MAX_STEP)
+        z, u, conv, res, its = solve_systems(
+            *self._jets, np.ascontiguousarray(np.asarray(y0, float).reshape(m, 6)), vec(x), vec(target),
+            vec(rate), vec(mean, bool), self._constants(phi2_ref), MAX_STEP, float(tol), int(max_iter))
+        return SystemResult(z, u, conv, res, int(its))
+
+    def march(self, stations, tol=1e-11, max_iter=40):
+        """Contact traced from M (TE free, constant offset E_m10) through ``stations (n_sides, n)`` rad in order on
+        each side; returns z (n_sides, n, 6), u (n_sides, n, 2) mm and the count of converged stations per side."""
+        from ..._core.multipoint_newton import march
+
+        return march(*self._jets, self.start(), np.ascontiguousarray(stations, float),
+                     self._constants(self.synthesis.phi2_mean), MAX_STEP, float(tol), int(max_iter))
 
     def start(self):
-        """y at the mean contact point M of the synthesis (E_m1 = E_m10)."""
+        """z at the mean contact point M of the synthesis (E_m1 = E_m10)."""
         s = self.synthesis
-        return np.array([s.pinion_params[0], s.pinion_params[1], *s.mean.gear_params, s.phi2_mean, self.offset0])
+        u1, psi1 = (float(v) for v in s.pinion_params[:2])
+        u2, psi2 = (float(v) for v in s.mean.gear_params)
+        phi1 = float(self.gen.contact(np.array(u1), np.array(psi1))["phi"])
+        phi2 = float(self.gear.generator.contact(np.array(u2), np.array(psi2))["phi"])
+        return np.array([phi1, psi1, phi2, psi2, s.phi2_mean, self.offset0])

@@ -28,29 +28,25 @@ def active_range(synthesis, step: float | None = None) -> tuple[float, float]:
     """Pinion rotations (x_lo, x_hi), rad from phi10, over which the contact of the synthesized pair stays inside
     both flank domains (above the fillet junctions, below the face cones, between toe and heel), within one mesh cycle.
 
-    The contact is traced outward from M in steps of ``step`` (default pi / (12 z1)) on both sides at once and the
-    last position inside both domains on each side is returned.
+    The contact is traced outward from M in steps of ``step`` (default pi / (12 z1)) on both sides, by continuation in
+    one compiled call (``MultiPointSystem.march``); the domains are then tested at all stations at once, and the last
+    station before the first one off a domain (or without contact) on each side is returned.
     """
     sysm = MultiPointSystem(synthesis)
     T = 2 * math.pi / sysm.kin.z1
     h = step if step is not None else T / 24
+    k, xs = 0, []
+    while k * h < T / 2:
+        k += 1
+        xs.append(min(k * h, T / 2))
+    xs = np.array([xs, [-v for v in xs]])
+    z, u, count = sysm.march(xs)
     pin = _Surface(synthesis.pinion_flank, 0.0, synthesis.pinion_params)
     gear = _Surface(synthesis.gear_flank, 0.0, synthesis.mean.gear_params)
-    y = np.stack([sysm.start()] * 2)
-    d = np.array([1.0, -1.0])
-    last = np.zeros(2)
-    alive = np.ones(2, bool)
-    prev = y.copy()
-    k = 0
-    while np.any(alive) and k * h < T / 2:
-        k += 1
-        x = d * min(k * h, T / 2)
-        guess = 2 * y - prev if k > 1 else y
-        res = sysm.solve(guess, x, np.zeros(2), np.zeros(2), synthesis.phi2_mean, np.ones(2, bool))
-        inside = res.converged & pin.contains(res.x[:, 0:2]) & gear.contains(res.x[:, 2:4])
-        alive &= inside
-        last = np.where(alive, x, last)
-        prev, y = y, np.where(alive[:, None], res.x, y)
+    inside = (np.arange(xs.shape[1]) < count[:, None]) & pin.contains(np.stack([u[..., 0], z[..., 1]], -1)) \
+        & gear.contains(np.stack([u[..., 1], z[..., 3]], -1))
+    n_in = np.argmin(np.c_[inside, np.zeros(2, bool)], axis=1)     # stations before the first one off
+    last = np.where(n_in > 0, xs[np.arange(2), np.maximum(n_in - 1, 0)], 0.0)
     if not (last[1] < 0 < last[0]):
         raise GeometryError.single("synthesis", "-", "a contact path on the active flanks on both sides of M", "-",
                                    "the contact leaves a flank within one step of the mean point")

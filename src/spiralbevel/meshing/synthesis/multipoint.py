@@ -10,8 +10,9 @@ blank offset E_m1 a different value at every cradle angle:
    the pinion generated
    with the instantaneous offset E_m1 and the gear (coincident points, collinear normals, both equations of meshing of
    generation) plus the CMC condition Delta phi2(x_k) = CMC(x_k) - CMC(0) of Eq. (17) with an absolute tolerance — for
-   E_m1 and the contact parameters (``_multipoint_system``: theta_1, theta_2 in closed form, a 6 x 6 system, all
-   control points in one batched Newton solve, started by continuation from M);
+   E_m1 and the contact parameters (``_multipoint_system``: u_1, u_2 from the equations of meshing inside the
+   compiled (phi, psi_c) jets, a 6 x 6 system, all control points in one compiled Newton call,
+   ``_core.multipoint_newton``, started by continuation from M);
 2. the cradle angle psi_c1 at which each control-point contact is generated is the node of the law E_m1(psi_c1);
    between nodes the law is linear (seed 001 §4.3.1 step 3) or the interpolating polynomial (``OffsetLaw``);
 3. the pinion generated with a variable offset has dE_m1/dt in its relative velocity (docs/theory/generation.md, Eqs.
@@ -202,6 +203,7 @@ def _stations(x, step):
         for p in pts:
             k = max(1, int(math.ceil((p - cur) / step - 1e-9)))
             st.extend(cur + (p - cur) * np.arange(1, k + 1) / k)
+            st[-1] = p              # the control point itself, not its rounded sum (a key of the path)
             cur = p
         out[d] = d * np.array(st)
     return out
@@ -305,13 +307,19 @@ def multipoint_control(synthesis, cmc, control_points, *, tol_abs: float = 1e-9,
             raise ConvergenceError("multi-point control: a control-point system diverged in the fixed-point iteration",
                                    res.iterations, float(np.max(res.residual)), res.x)
         change = max(np.max(np.abs(res.x[:, 1] - y[:, 1])) / 1e-11, np.max(np.abs(res.x[:, 5] - y[:, 5])) / 1e-12)
-        y = res.x
+        y, (p1, p2) = res.x, res.params
         if change < 1.0:        # nodes fixed to 1e-11 rad and 1e-12 mm
             break
     else:
         raise ConvergenceError(f"multi-point control: offset rates not consistent after {max_outer} iterations "
                                f"(last scaled change {change:.3g})", max_outer, float(change), y)
     law = _law(interpolation, y, base)
+    y = np.concatenate([p1, p2, y[:, 4:6]], -1)    # (u1, psi_c1, u2, psi_c2, phi2, E_m1)
+    below = (y[:, 0] < system.gen.cp["u_j"]) | (y[:, 2] < system.gear.generator.cp["u_j"])
+    if np.any(below):       # the systems are solved on the blades (continued past the fillet junction)
+        raise DesignError.single("control_points", x[below].tolist(), "pinion rotations whose controlled contact "
+                                 "lies on the blades of both members (see active_range)", "rad",
+                                 "the contact there is below a fillet junction")
     settings = law.settings(synthesis.pinion_settings)
     flank = generate_flank(synthesis.pinion_cutter, settings, _blank_of(synthesis), Member.PINION,
                            synthesis.pinion_flank.side)
