@@ -53,15 +53,19 @@ def test_multiprocess_cluster_over_tcp_matches_sequential(spec):
     assert recs == misalignment_sweep(spec, grid, scheduler="sequential")
 
 
-def test_batches_cover_the_grid_in_order():
-    from spiralbevel.job.sweep import BATCHES_PER_WORKER, _batches
+def test_batches_cover_the_grid_and_merge_back_in_order():
+    from spiralbevel.job.sweep import BATCHES_PER_WORKER, MIN_BATCH, _batches, _merge
 
-    pts = list(range(23))
-    for workers in (1, 2, 7, 50):
-        b = _batches(pts, workers)
-        assert [p for part in b for p in part] == pts
-        assert len(b) == min(len(pts), BATCHES_PER_WORKER * workers)
-        assert max(map(len, b)) - min(map(len, b)) <= 1
+    for n_points in (1, 7, 23, 200, 1000):
+        pts = list(range(n_points))
+        for workers in (1, 2, 7, 50):
+            b = _batches(pts, workers)
+            assert sorted(p for part in b for p in part) == pts      # every point once
+            assert _merge(b) == pts                                   # and back in grid order
+            assert len(b) == max(1, min(n_points, BATCHES_PER_WORKER * workers, -(-n_points // MIN_BATCH)))
+            assert max(map(len, b)) - min(map(len, b)) <= 1
+            # interleaved: every batch of more than one case spans the grid, not a contiguous block
+            assert all(part[-1] - part[0] >= (len(part) - 1) * len(b) for part in b)
 
 
 def test_cli_sweep_writes_json(tmp_path):

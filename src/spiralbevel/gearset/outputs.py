@@ -10,11 +10,18 @@ import numpy as np
 from ..conventions import Member, Side
 
 
+#: resolution of the PNG plots: the figures are sized in inches for 7-10 pt text (10-14 px at 100 dpi, as legible as
+#: on screen); the pixel count sets the cost of drawing the colour maps and of the PNG encoding
+PLOT_DPI = 100
+#: zlib level of the PNG encoding (Pillow's default 6 takes a third longer for 5-10 % smaller files)
+PNG_COMPRESS_LEVEL = 3
+
+
 def save_figure(fig, path: Path) -> str:
-    """Save a matplotlib figure as PNG (150 dpi) and close it."""
+    """Save a matplotlib figure as PNG (:data:`PLOT_DPI`) and close it."""
     import matplotlib.pyplot as plt
 
-    fig.savefig(path, dpi=150)
+    fig.savefig(path, dpi=PLOT_DPI, pil_kwargs={"compress_level": PNG_COMPRESS_LEVEL})
     plt.close(fig)
     return path.name
 

@@ -101,15 +101,13 @@ def run_facemilled(gs, out, steps, report, summary):
     if o.plots:
         with steps.step("plots"):
             if ltca_result is not None:
-                fig = ltca_result.plot(outline=tca_outlines.get(spec.ltca.side, (None, None))[1])
-                fig.suptitle(f"Loaded TCA, {spec.ltca.side} side: {spec.title}")
-                fig.tight_layout(rect=(0, 0, 1, 0.93))
+                fig = ltca_result.plot(outline=tca_outlines.get(spec.ltca.side, (None, None))[1],
+                                       title=f"Loaded TCA, {spec.ltca.side} side: {spec.title}")
                 summary.files.append(outputs.save_figure(fig, out / "ltca.png"))
             for name, res in tca_results.items():
                 if res is not None:
-                    fig = res.plot(outline1=tca_outlines[name][0], outline2=tca_outlines[name][1])
-                    fig.suptitle(f"TCA, {name} side: {spec.title}")
-                    fig.tight_layout(rect=(0, 0, 1, 0.93))
+                    fig = res.plot(outline1=tca_outlines[name][0], outline2=tca_outlines[name][1],
+                                   title=f"TCA, {name} side: {spec.title}")
                     summary.files.append(outputs.save_figure(fig, out / f"tca_{name}.png"))
             summary.files.append(outputs.axial_section(grids, out, spec.title, tooth, blank))
             summary.files.append(outputs.curvature_maps(

@@ -1,12 +1,12 @@
 """Misalignment sweeps of a face-milled pair: TCA at every point of a grid of misalignments, in parallel with dask.
 A hypoid pair is swept through its offset kinematics with the misalignments on top (``job/sweep_hypoid.py``).
 
-The grid points are cut into a few batches per worker (:func:`sweep_batch`, one dask task each: the per-task overhead
-of the scheduler, a few ms, is paid a few times per worker instead of once per case). Each worker process rebuilds the
-pair from the design (a pydantic model as JSON: small to ship) once and keeps it for all its batches. With dask
-installed (extra ``dist``) the batches run on a pool of local processes that is kept for the next sweep of the session,
-or on a cluster given by its scheduler address (``dask.distributed``, ``--scheduler tcp://host:8786``); without dask,
-one after the other in this process.
+The grid points are dealt into a few interleaved batches per worker (:func:`sweep_batch`, one dask task each: the
+per-task overhead of the scheduler, a few ms, is paid a few times per worker instead of once per case). Each worker
+process rebuilds the pair from the design (a pydantic model as JSON: small to ship) once and keeps it for all its
+batches. With dask installed (extra ``dist``) the batches run on a pool of local processes that is kept for the next
+sweep of the session, or on a cluster given by its scheduler address (``dask.distributed``, ``--scheduler
+tcp://host:8786``); without dask, one after the other in this process.
 """
 
 from __future__ import annotations
@@ -204,16 +204,30 @@ def sweep_batch(spec_json: str, side: str, points: list, n_positions: int = 41) 
     return [sweep_point(spec_json, side, tuple(p), n_positions) for p in points]
 
 
-#: batches per worker: enough to even out the load (cases near the edge of contact cost more), few enough that the
-#: per-task overhead stays negligible
-BATCHES_PER_WORKER = 4
+#: batches per worker: enough that the last batches to finish leave a worker idle for a small share of the run (the
+#: batches are handed out one at a time as workers free up), few enough that the scheduler's per-task cost (a few ms)
+#: stays negligible
+BATCHES_PER_WORKER = 8
+#: fewest cases of a batch (below, the per-task cost would matter against a few TCAs)
+MIN_BATCH = 8
 
 
 def _batches(points, n_workers):
-    """``points`` cut into at most BATCHES_PER_WORKER * n_workers contiguous batches of nearly equal size."""
-    n = max(1, min(len(points), BATCHES_PER_WORKER * max(1, n_workers)))
-    bounds = np.linspace(0, len(points), n + 1).round().astype(int)
-    return [points[a:b] for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
+    """``points`` dealt into at most BATCHES_PER_WORKER * n_workers batches of nearly equal size (and at least
+    MIN_BATCH cases where there are enough), interleaved: batch i holds points i, i + n, i + 2 n, ... so that every
+    batch samples the whole grid and costs about the same (the costly cases near the edge of contact sit together in
+    the grid). :func:`_merge` puts the results back in grid order."""
+    n = max(1, min(len(points), BATCHES_PER_WORKER * max(1, n_workers), -(-len(points) // MIN_BATCH)))
+    return [points[i::n] for i in range(n)]
+
+
+def _merge(parts) -> list:
+    """The records of :func:`_batches`' batches (in batch order) back in grid order."""
+    n = len(parts)
+    out = [None] * sum(len(p) for p in parts)
+    for i, part in enumerate(parts):
+        out[i::n] = part
+    return out
 
 
 @functools.lru_cache(maxsize=1)
@@ -290,7 +304,7 @@ def misalignment_sweep(spec, grid: dict, side: str = "drive", scheduler: str | N
         tasks = [dask.delayed(sweep_batch)(spec_json, side, b, n_positions) for b in _batches(points, n_workers)]
         # chunksize 1: dask would otherwise hand out ready tasks in groups of 6, leaving a worker idle
         parts = dask.compute(*tasks, scheduler="processes", pool=_local_pool(n_workers), chunksize=1)
-        return [r for part in parts for r in part]
+        return _merge(parts)
     try:
         from distributed import Client
     except ImportError as err:
@@ -299,4 +313,4 @@ def misalignment_sweep(spec, grid: dict, side: str = "drive", scheduler: str | N
         n_workers = sum(client.nthreads().values())
         tasks = [dask.delayed(sweep_batch)(spec_json, side, b, n_positions) for b in _batches(points, n_workers)]
         parts = dask.compute(*tasks, scheduler=client)
-    return [r for part in parts for r in part]
+    return _merge(parts)

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from .layout import fixed_layout
+from .layout import fixed_layout, legend_among_lines
 
 __all__ = ["plot_draft"]
 
@@ -87,7 +87,7 @@ def plot_draft(result, ax=None, coords: str = "varphi", limit: float = 0.0, titl
     if title is None:
         title = f"{result.side.value} flank: " + _verdict(result, lim)
     ax.set_title("\n".join(textwrap.wrap(title, 58)), fontsize=9)   # at most the panel's width
-    ax.legend(handles=handles, fontsize=7, loc="best")
+    legend_among_lines(ax, handles=handles, fontsize=7)
     return fig
 
 

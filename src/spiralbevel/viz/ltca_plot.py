@@ -7,10 +7,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from .layout import fixed_layout
+
 __all__ = ["plot_ltca"]
 
 
-def plot_ltca(result, member: str = "gear", fig=None, outline=None):
+def plot_ltca(result, member: str = "gear", fig=None, outline=None, title=None):
     """Three panels: unloaded and loaded transmission error (arcsec), load share per pair, and the contact pressure
     over the flank of ``member`` as a filled map (all positions of the mesh cycle together, projected on the member's
     axial plane: axial z versus radius, mm) inside the flank outline.
@@ -23,6 +25,8 @@ def plot_ltca(result, member: str = "gear", fig=None, outline=None):
     outline : (n, m, 3) float, mm, optional
         The flank grid of ``member`` in its frame (rows toe -> heel, columns root -> top): its toe, heel, root and top
         lines are drawn and labelled around the pressure map.
+    title : str, optional
+        Figure title above the three panels.
 
     Returns
     -------
@@ -30,7 +34,8 @@ def plot_ltca(result, member: str = "gear", fig=None, outline=None):
     """
     import matplotlib.pyplot as plt
 
-    if fig is None:
+    own = fig is None
+    if own:
         fig = plt.figure(figsize=(12, 4))
     ax1, ax2, ax3 = fig.subplots(1, 3)
     x = np.degrees(result.pinion_angles)
@@ -68,7 +73,12 @@ def plot_ltca(result, member: str = "gear", fig=None, outline=None):
     ax3.set_ylabel("radius (mm)")
     ax3.set_title(f"contact pressure on the {member} flank over the mesh cycle,\npeak {result.peak_pressure:.0f} N/mm²",
                   fontsize=9)
-    fig.tight_layout()
+    if title:
+        fig.suptitle(title)
+    if own:  # fixed margins; the pressure map's colour bar sits in the right margin
+        fixed_layout(fig, 1, 3, left=0.75, right=0.9, bottom=0.6, top=0.55, wspace=1.05, suptitle=bool(title))
+    else:
+        fig.tight_layout()
     return fig
 
 

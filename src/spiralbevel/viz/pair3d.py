@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .layout import fixed_layout
+
 
 def plot_surfaces_3d(surfaces, title="", elev=25, azim=-60, views=None):
     """Draw point grids as opaque, lit surfaces with equal scales on the three axes.
@@ -115,5 +117,5 @@ def plot_transverse_section(profiles, title=""):
     ax.legend(fontsize=8, loc="upper right")
     if title:
         ax.set_title(title)
-    fig.tight_layout()
+    fixed_layout(fig, 1, 1, left=0.75, right=0.2)
     return fig

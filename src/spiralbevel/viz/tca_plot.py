@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import MissingDependencyError
+from .layout import fixed_layout
 
 __all__ = ["plot_tca", "project_axial_radial"]
 
@@ -74,7 +75,7 @@ def _tooth_panel(ax, title, outline, path, ellipses, status_ok, edge=None):
     ax.legend(fontsize=7, loc="best")
 
 
-def plot_tca(result, outline1=None, outline2=None, axes=None, ellipse_every=4, n_ellipse=49):
+def plot_tca(result, outline1=None, outline2=None, axes=None, ellipse_every=4, n_ellipse=49, title=None):
     """Three panels: TE (arcsec) of every pair and the envelope; contact path and ellipses on the pinion and on the
     gear, drawn on the projected tooth (axial position vs radius).
 
@@ -87,6 +88,8 @@ def plot_tca(result, outline1=None, outline2=None, axes=None, ellipse_every=4, n
     axes : sequence of 3 matplotlib Axes, optional
     ellipse_every : int
         Draw the contact ellipse at every ``ellipse_every``-th position (finite ellipses only).
+    title : str, optional
+        Figure title above the three panels.
 
     Returns
     -------
@@ -94,7 +97,8 @@ def plot_tca(result, outline1=None, outline2=None, axes=None, ellipse_every=4, n
         The pinion rotation is shown in degrees from the mean position (as in the loaded TCA plot), TE in arcsec.
     """
     plt = _plt()
-    if axes is None:
+    own = axes is None
+    if own:
         fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
     else:
         fig = axes[0].figure
@@ -137,5 +141,8 @@ def plot_tca(result, outline1=None, outline2=None, axes=None, ellipse_every=4, n
     edge_at = ok & (np.asarray(result.status) == 2)
     _tooth_panel(ax1, "pinion flank", outline1, p1, ell1, status_ok, edge_at)
     _tooth_panel(ax2, "gear flank", outline2, p2, ell2, status_ok, edge_at)
-    fig.tight_layout()
+    if title:
+        fig.suptitle(title)
+    if own:  # fixed margins: room for the tick labels and the toe/heel/root/top labels outside the flanks
+        fixed_layout(fig, 1, 3, left=0.75, right=0.3, bottom=0.6, top=0.4, wspace=1.0, suptitle=bool(title))
     return fig

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .layout import fixed_layout
+
 
 def pitch_cone_trace(points, pitch_angle):
     """Intersect a flank grid with the pitch cone (apex at the origin, half-angle ``pitch_angle``).
@@ -72,5 +74,5 @@ def plot_pitch_traces(traces, title="Tooth traces on the developed pitch cones")
         ax.set_title(group)
         ax.legend(fontsize=8)
     fig.suptitle(title)
-    fig.tight_layout()
+    fixed_layout(fig, 1, len(groups), left=0.75, right=0.2, wspace=0.95, suptitle=True)
     return fig

@@ -56,6 +56,7 @@ def locate_on_grid(grid, points, iterations=200):
     and projected onto the cell. A coordinate at a cell edge whose gradient points out of the cell is held there
     while the other one slides along the edge; once that stalls, the point moves on to the neighbouring cell (its
     coordinate continued across the edge), except at the grid's outer edge, where the foot stays (not inside).
+    The steps run compiled, each point until it stops (``_core.grid_locate.iterate_feet``).
     """
     grid = np.asarray(grid, float)
     pts = np.asarray(points, float).reshape(-1, 3)
@@ -67,43 +68,12 @@ def locate_on_grid(grid, points, iterations=200):
     a, b = near // n1, near % n1
     i, j = np.minimum(a, n0 - 2), np.minimum(b, n1 - 2)
     xi, eta = (a - i).astype(float), (b - j).astype(float)
-    done = np.zeros(npt, bool)
-    for _ in range(iterations):
-        act = np.flatnonzero(~done)
-        if act.size == 0:
-            break
-        ia, ja, x, e, p = i[act], j[act], xi[act], eta[act], pts[act]
-        r, ru, rv, ruv = _patch(grid, ia, ja, x, e)
-        res = r - p
-        g1, g2 = _dot(ru, res), _dot(rv, res)
-        # a coordinate at a cell edge with the gradient pointing out of the cell is held there; the other one slides
-        out_lo1, out_hi1 = (x <= 0) & (g1 > 0), (x >= 1) & (g1 < 0)
-        out_lo2, out_hi2 = (e <= 0) & (g2 > 0), (e >= 1) & (g2 < 0)
-        fix1, fix2 = out_lo1 | out_hi1, out_lo2 | out_hi2
-        a11, a22, a12 = _dot(ru, ru), _dot(rv, rv), _dot(ru, rv)
-        h12 = a12 + _dot(res, ruv)
-        det = a11 * a22 - h12**2
-        h12 = np.where(det > 1e-12 * a11 * a22, h12, a12)  # not positive definite: Gauss-Newton
-        det = a11 * a22 - h12**2
-        d1 = -(a22 * g1 - h12 * g2) / det
-        d2 = -(a11 * g2 - h12 * g1) / det
-        d1 = np.where(fix2, -g1 / a11, d1)
-        d2 = np.where(fix1, -g2 / a22, d2)
-        d1 = np.where(fix1, 0.0, d1)
-        d2 = np.where(fix2, 0.0, d2)
-        scale = np.minimum(1.0, 1.0 / np.maximum(np.maximum(np.abs(d1), np.abs(d2)), 1e-300))  # damping: <= 1 cell
-        x_new = np.clip(x + d1 * scale, 0.0, 1.0)
-        e_new = np.clip(e + d2 * scale, 0.0, 1.0)
-        stalled = np.maximum(np.abs(x_new - x), np.abs(e_new - e)) < 1e-13
-        # stalled at the best point of a cell edge that the gradient points across: on to the neighbouring cell
-        # (coordinate continued across the edge); at the grid's outer edge the foot stays there
-        mv1 = stalled & ((out_lo1 & (ia > 0)) | (out_hi1 & (ia < n0 - 2)))
-        mv2 = stalled & ((out_lo2 & (ja > 0)) | (out_hi2 & (ja < n1 - 2)))
-        i[act] = ia + np.where(mv1, np.where(out_lo1, -1, 1), 0)
-        j[act] = ja + np.where(mv2, np.where(out_lo2, -1, 1), 0)
-        xi[act] = np.where(mv1, np.where(out_lo1, 1.0, 0.0), x_new)
-        eta[act] = np.where(mv2, np.where(out_lo2, 1.0, 0.0), e_new)
-        done[act] = stalled & ~mv1 & ~mv2
+    from ..._core.grid_locate import iterate_feet
+
+    i, j = np.ascontiguousarray(i, np.int64), np.ascontiguousarray(j, np.int64)
+    xi, eta = np.ascontiguousarray(xi, float), np.ascontiguousarray(eta, float)
+    if npt:
+        iterate_feet(np.ascontiguousarray(grid), np.ascontiguousarray(pts), i, j, xi, eta, int(iterations))
     # Karush-Kuhn-Tucker check of the foot in its cell (never trust an unconverged iterate)
     r, ru, rv, _ = _patch(grid, i, j, xi, eta)
     res = r - pts
