@@ -18,8 +18,9 @@ import logging
 import numpy as np
 
 from ..._core.continuation import arclength_continuation
-from ..._core.newton import solve_batched
-from ...conventions import Member
+from ..._core import generation_blade_jet as _bj
+from ..._core import settings_fit as _sf
+from ...conventions import Hand, Member
 from ...errors import ConvergenceError, DesignError, GeometryError, SpiralBevelError
 from ...generation import generate_flank
 from ...generation.meshing import Generator
@@ -57,6 +58,9 @@ _BAD = 1e6
 # only has to be followed, not solved to the end tolerance (which the evaluation noise of the curvatures, about
 # 1e-7 in scaled units, would not always allow)
 _PATH_TOL = 1e-6
+# relative step of the central-difference Jacobian: about eps^(1/3), where truncation (h^2) and rounding (eps / h)
+# errors balance
+_REL_STEP = 6e-6
 
 
 def _value(cutter, settings, name):
@@ -159,26 +163,19 @@ def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_D
     except SpiralBevelError:
         theta0 = float(flank0.evaluate(flank0.generator.cp["u_j"], 0.0, curvature=False).theta)
     x0 = np.array([_value(cutter0, settings0, f) for f in free] + [theta0])
-
-    def invariants(x):
-        c, s = build(cutter0, settings0, free, x[:6])
-        return _invariants(blade_point(Generator(c, s, hand), x[6]))[0]   # the flank's kernel, without the outline
+    kin = _kernel_inputs(cutter0, settings0, hand, free)
 
     def residual(x, goal):
-        try:
-            return (invariants(x) - goal) * w
-        except SpiralBevelError:
-            return np.full(7, _BAD)
+        f = np.empty(7)
+        _sf.residual(*kin, np.asarray(x, float), np.asarray(goal, float), w, f)
+        return f
 
     step = np.array([_MAX_STEP[f] for f in free] + [_MAX_STEP_THETA])
-    res = solve_batched(lambda x: residual(x, target), x0, tol=tol, max_iter=max_iter, max_step=step)
-    x, ok, iterations, resid, method = res.x, bool(res.converged), int(res.iterations), float(res.residual), "newton"
+    x, ok, iterations, resid = _sf.newton(*kin, x0, target, w, step, tol, max_iter, _REL_STEP)
+    ok, iterations, resid, method = bool(ok), int(iterations), float(resid), "newton"
     if not ok:
-        try:
-            inv0 = invariants(x0)
-        except SpiralBevelError:
-            inv0 = None
-        if inv0 is not None:
+        inv0 = np.empty(7)
+        if _sf.invariants(*kin, x0, inv0)[0]:
             arc = arclength_continuation(lambda x, t: residual(x, inv0 + t * (target - inv0)), x0, step, tol=tol,
                                          path_tol=_PATH_TOL * max(1.0, float(np.max(np.abs((target - inv0) * w)))))
             _log.debug("arclength continuation: reached t = %.4f in %d steps, %d turning points, converged %s",
@@ -192,10 +189,21 @@ def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_D
                                f"(free = {free}; scaled residual {resid:.3g})",
                                iterations=iterations, residual=resid, last=x)
     cutter, settings = build(cutter0, settings0, free, x[:6])
-    fp = blade_point(Generator(cutter, settings, hand), x[6])
-    _, nt = _invariants(fp)
+    _, nt, u = _sf.invariants(*kin, x, np.empty(7))
     if np.sign(nt) != np.sign(target_nt):
         raise ConvergenceError("pinion machine settings: Newton reached the mirror branch of the normal",
                                iterations=iterations, residual=resid, last=x)
-    return cutter, settings, float(fp.u), dict(theta=float(x[6]), iterations=iterations, residual=resid,
-                                               method=method)
+    return cutter, settings, float(u), dict(theta=float(x[6]), iterations=iterations, residual=resid,
+                                            method=method)
+
+
+def _kernel_inputs(cutter0, settings0, hand, free):
+    """(prm0, cut, codes) of the compiled residual (``_core.settings_fit``) around the starting cutter and settings
+    (a free modified roll gets a first roll coefficient to solve, 0 = none)."""
+    if "modified_roll" in free and not settings0.modified_roll:
+        settings0 = settings0.replace(modified_roll=(0.0,))
+    g = Generator(cutter0, settings0, hand)
+    prm0 = _bj.parameters(g.cp, g.mp, g.hand is Hand.RIGHT, 0.0)
+    cut = np.array([g.cp["s"], g.cp["rho_f"], g.cp["rp"], g.cp["up"], float(cutter0.point_width)])
+    codes = np.array([_sf.CODES[f] for f in free], np.int64)
+    return prm0, cut, codes
