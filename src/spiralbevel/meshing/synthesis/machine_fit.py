@@ -14,13 +14,15 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import math
 
 import numpy as np
 
 from ..._core.continuation import arclength_continuation
+from ..._core import blade_locate as _bl
 from ..._core import generation_blade_jet as _bj
 from ..._core import settings_fit as _sf
-from ...conventions import Hand, Member
+from ...conventions import TOL, Hand, Member
 from ...errors import ConvergenceError, DesignError, GeometryError, SpiralBevelError
 from ...generation import generate_flank
 from ...generation.meshing import Generator
@@ -61,6 +63,10 @@ _PATH_TOL = 1e-6
 # relative step of the central-difference Jacobian: about eps^(1/3), where truncation (h^2) and rounding (eps / h)
 # errors balance
 _REL_STEP = 6e-6
+# the start's location on the target circle: Newton step caps (rad) in (phi, psi_c) and the cutter-angle window about
+# the reference angle, as the flank's blade locator (generation/locate_blade.py)
+_LOCATE_STEP = np.array([0.05, 0.05])
+_LOCATE_PHI_SPAN = 0.75
 
 
 def _value(cutter, settings, name):
@@ -158,10 +164,12 @@ def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_D
     hand = flank0.hand
     # start: the cutter angle of the flank point on the target circle (the cutter of the basic settings passes near
     # it), else the blade junction's at psi_c = 0
-    try:
-        theta0 = float(flank0.locate(target[0], target[1], curvature=False).theta)
-    except SpiralBevelError:
-        theta0 = float(flank0.evaluate(flank0.generator.cp["u_j"], 0.0, curvature=False).theta)
+    theta0 = _start_on_circle(flank0.generator, target[0], target[1])
+    if theta0 is None:
+        try:
+            theta0 = float(flank0.locate(target[0], target[1], curvature=False).theta)
+        except SpiralBevelError:
+            theta0 = float(flank0.evaluate(flank0.generator.cp["u_j"], 0.0, curvature=False).theta)
     x0 = np.array([_value(cutter0, settings0, f) for f in free] + [theta0])
     kin = _kernel_inputs(cutter0, settings0, hand, free)
 
@@ -195,6 +203,26 @@ def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_D
                                iterations=iterations, residual=resid, last=x)
     return cutter, settings, float(u), dict(theta=float(x[6]), iterations=iterations, residual=resid,
                                             method=method)
+
+
+def _start_on_circle(gen, axial, radius):
+    """Cutter angle theta (rad, as ``FlankPoints.theta``) of the blade point on the circle (axial, radius) mm, by
+    the compiled Newton of the flank locator (``_core.blade_locate``) from the reference angle at psi_c = 0 (where
+    the cutter circle crosses the root line: the middle of the locator's start table); None where that single start
+    does not reach a blade point inside the locator's window (the caller then locates with the whole table)."""
+    psi_ref = 0.0
+    phi_ref = float(gen.reference_angle(psi_ref))
+    prm = _bj.parameters(gen.cp, gen.mp, False, 0.0)
+    x, u, conv, _ = _bl.locate_axial_radius(prm, np.array([[phi_ref, psi_ref]]), np.array([float(axial)]),
+                                            np.array([float(radius)]), TOL.newton_abs * 10, TOL.max_iter,
+                                            _LOCATE_STEP)
+    phi, psi, u = float(x[0, 0]), float(x[0, 1]), float(u[0])
+    if not (conv[0] and u >= gen.cp["u_j"] - 1e-9):
+        return None
+    d = math.remainder(phi - float(gen.reference_angle(psi)), 2.0 * math.pi)
+    if abs(d) > _LOCATE_PHI_SPAN:
+        return None
+    return phi - (math.pi - gen.mp["q"] + psi)
 
 
 def _kernel_inputs(cutter0, settings0, hand, free):
