@@ -8,7 +8,8 @@ start by one compiled Newton solve, with that locator as its fallback). Both tim
 median of N runs (bench/_timing.py), CPU time of this process (``time.process_time``: single-threaded work on a
 machine shared by several engineers; its load is printed). The numpy residual lives here only, as the baseline.
 Run: ``python bench/bench_synthesis.py [N]``. Target (issue 13): synthesis <= 5 ms on one core. Of what is left after
-the compiled fit, most is the numpy location of the gear's mean point (``mean_contact``); the multi-point control and ``active_range`` are in ``bench_cmc.py``.
+the compiled fit, most is the numpy location of the gear's mean point (``mean_contact``); the multi-point control
+and ``active_range`` are in ``bench_cmc.py``.
 """
 
 from __future__ import annotations

@@ -16,7 +16,8 @@ Unknown codes (``codes (6,) int64``): 0 cutter point radius R_h (mm), 1 blade an
 (mm), 3 cradle angle q (rad), 4 machine root angle gamma (rad), 5 machine centre to back X_D (mm), 6 sliding base X_B
 (mm), 7 blank offset E_m (mm; the kernel's E is -E_m), 8 ratio of roll m (-), 9 modified roll 2C (-, the first roll
 coefficient of ``prm``, which must hold at least one). ``cut (5,) float`` = (s, rho_f, profile radius, profile ref,
-point width W): the blade constants that, with R_h and alpha, give the derived blade constants of ``_core.generation.cutter_params``.
+point width W): the blade constants that, with R_h and alpha, give the derived blade constants of
+``_core.generation.cutter_params``. Below the fillet junction the blade is continued (as in the jet's chart).
 Where the cutter or the settings would be invalid (``HeadCutter`` and ``MachineSettings`` ranges) or the chart is
 singular, every residual is ``BAD`` (large and finite: a Newton step into it is shortened).
 """

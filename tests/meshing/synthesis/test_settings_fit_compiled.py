@@ -125,7 +125,7 @@ def test_fit_matches_scipy_root_on_the_numpy_residual():
 
         x_start = np.array([_value(c0, s_start, f) for f in free] + [x_true[6]])
 
-        def fun(x, free=free, s_start=s_start):
+        def fun(x, free=free, s_start=s_start, target=target):
             try:
                 return (_numpy_invariants(c0, s_start, hand, free, x)[0] - target) * w
             except SpiralBevelError:

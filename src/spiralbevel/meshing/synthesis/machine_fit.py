@@ -1,8 +1,10 @@
 """Pinion machine settings that generate prescribed first- and second-order geometry at one point.
 
-The generated pinion flank (``spiralbevel.generation``) is a black box (phi, psi_c) -> point, outward normal, principal
-curvatures (curvature transfer, docs/theory/generation.md, Eqs. (G13)-(G15) (#curvature-transfer)). The mean point is
-generated at the cradle angle psi_c = 0 (a gauge: the cradle angle q then places the cutter). Seven conditions, all
+The generated pinion point at the cradle angle psi_c = 0 (a gauge: the cradle angle q then places the cutter) is
+evaluated by the compiled residual of :mod:`spiralbevel._core.settings_fit`: point, outward normal and their
+derivatives from the compiled first-order jet of the generated flank in the (phi, psi_c) chart, the curvature tensor
+from them by Weingarten's relation (the same tensor as the curvature transfer of docs/theory/generation.md, Eqs.
+(G13)-(G15) (#curvature-transfer), which the tests compare), and solved by a compiled Newton. Seven conditions, all
 invariant under rotation about the pinion axis (the pinion's rotation phi10 in the pair is free): axial position and
 radius of the point (2), axial and radial components of the unit normal (2), and the three components of the curvature
 tensor in the tangent basis of :func:`~spiralbevel.meshing.synthesis._relations.tangent_components` (3). Unknowns: the
@@ -147,10 +149,15 @@ def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_D
     most spiral angles, but it folds inside the face at low ones (docs/conventions.md, "Fold of generation"): there
     the point of a given u at psi_c = 0 ceases to exist along the way to the target, which stalled the solve.
 
-    Newton's method from the start first; if it fails, pseudo-arclength continuation
+    The start's cutter angle is that of the flank point on the target circle (one compiled locator solve, else the
+    flank's table locator). Newton's method (compiled, central-difference Jacobian, steps capped per unknown) from the
+    start first; if it fails, pseudo-arclength continuation
     (:func:`~spiralbevel._core.continuation.arclength_continuation`) of the homotopy that moves the goal linearly
     from the start's own invariants to the target; it follows the solution curve through turning points, where a
     continuation in the goal alone stalls.
+
+    Below the fillet junction the residual keeps the straight (or arc) blade extended, as the chart's blade
+    parameter does: continuous for iterates that pass there; the solution itself lies on the blade.
     """
     free = tuple(free)
     known = _CUTTER + _SETTINGS
