@@ -75,9 +75,6 @@ def _synthesize(spec, blank, setups):
     sy = effective_synthesis(spec, blank)
     if sy is None:
         return {}, {}
-    if sy.motion_curve != "parabolic":
-        raise DesignError.single("synthesis.motion_curve", sy.motion_curve, "'parabolic' for a hypoid pair", "-",
-                                 "multi-point control of a hypoid pinion is not supported yet")
     default = getattr(sy, "_default", False)
     new, results = {}, {}
     for name in sy.sides:
@@ -108,6 +105,12 @@ def _synthesize(spec, blank, setups):
                                    getattr(last, "last", None)) from last
         off, res, eta = best
         note = "" if off == 0 else f"; bearing off the flanks at {off} of {_CHECK_POSITIONS} positions"
+        if sy.motion_curve == "cmc":    # multi-point control of the blank offset (synthesis/hypoid_multipoint.py)
+            from ..meshing.synthesis.hypoid_multipoint import design_hypoid_cmc
+
+            res = design_hypoid_cmc(res, te_magnitude=sy.te_magnitude * ARCSEC, n_control=sy.control_points,
+                                    interpolation=sy.offset_interpolation, n_positions=spec.tca.positions)
+            note += f"; multi-point control to the CMC, {sy.control_points} points, {sy.offset_interpolation} law"
         new[(Member.PINION, s1)] = FlankSetup(
             Member.PINION, s1, res.pinion_cutter, res.pinion_settings, res.pinion_flank,
             f"hypoid local synthesis ({name} side, path {eta:g} deg, free = {sy.free}{note})")
