@@ -60,7 +60,7 @@ def run_hypoid(gs, out, steps, report, summary):
                 outlines[name] = outline
         from .hypoid_cmc import hypoid_cmc_report
 
-        hypoid_cmc_report(report, summary, synth, spec.tca.positions)      # a pinion controlled to the CMC ([synthesis] motion_curve)
+        hypoid_cmc_report(report, summary, synth, spec.tca.positions)   # [synthesis] motion_curve = "cmc"
     with steps.step("ease-off (hypoid conjugate) and measurement grids"):
         from .hypoid import hypoid_easeoff_maps
         from .inspection import measurement_files
