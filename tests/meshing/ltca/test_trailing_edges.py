@@ -93,11 +93,17 @@ def test_followed_edge_contacts_are_the_real_first_touch(case, oracle_te):
     np.testing.assert_array_equal(t2.te_pairs[keep], np.asarray(tca.te_pairs)[keep])
 
 
-def test_every_pair_within_the_loaded_lag_carries_load(case, oracle_te):
+@pytest.fixture(scope="module")
+def rigid(case):
+    pair, tca = case
+    return ltca_model(pair.pinion, pair.gear, pair.kinematics, tca, rigid=True, grid=(15, 5))
+
+
+def test_every_pair_within_the_loaded_lag_carries_load(case, oracle_te, rigid):
     """Complementarity against the oracle: at the loaded TE, a pair whose real flanks would overlap (its first
     touch leads the loaded TE) carries load, a pair that trails it carries none."""
     pair, tca = case
-    m = ltca_model(pair.pinion, pair.gear, pair.kinematics, tca, rigid=True, grid=(15, 5))
+    m = rigid
     res = m.run(TORQUE, approach_target=None)
     ref = oracle_te
     for a, i in enumerate(IDX):
@@ -108,3 +114,13 @@ def test_every_pair_within_the_loaded_lag_carries_load(case, oracle_te):
             assert (res.load_share[i, j] > 0) == (gap > 0), (i, j, ref[a, j], res.te_loaded[i])
     # and the loaded TE has no jump at the handover: its range stays below a quarter of the unloaded one
     assert np.ptp(res.te_loaded) < 0.25 * np.ptp(tca.te_arcsec)
+
+
+def test_a_lag_beyond_the_followed_window_warns(rigid):
+    """Pairs are followed up to 1 % of the gear pitch behind the leading one (309 arcsec here); a torque whose lag
+    exceeds that (about 25 arcsec at 80 N m, growing as T^(2/3) with rigid teeth) is flagged, not silently wrong."""
+    from spiralbevel.errors import SpiralBevelWarning
+
+    assert rigid.trailing_window == pytest.approx(0.01 * 2 * np.pi / 42)
+    with pytest.warns(SpiralBevelWarning, match="trailing edge contacts"):
+        rigid.run(1e7, approach_target=None)
