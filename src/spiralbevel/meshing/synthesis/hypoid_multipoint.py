@@ -101,6 +101,7 @@ def multipoint_surfaces(result: MultiPointResult):
 
     s, i = result.synthesis, result.mean_index
     out = []
+    flank: Any
     for flank, rot, (u, psi) in ((result.pinion_flank, s.phi1_mean, result.pinion_params[i]),
                                  (s.gear_flank, s.phi2_mean, result.gear_params[i])):
         surf = GeneratedSurface(flank, rot)
