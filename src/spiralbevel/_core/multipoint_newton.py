@@ -7,11 +7,15 @@ the contact point on the pinion and on the gear (the (phi, psi_c) chart of the c
 generation), the gear rotation (rad) and the pinion's instantaneous blank offset (mm, user sign of
 ``MachineSettings.blank_offset``). Equations, all in mm:
 
-    R_z(phi1_mean + x) r1 - G(phi2) r2 = 0                                   (3)
+    o1 + R_z(phi1_mean + x) r1 - o2 - G(phi2) r2 = 0                         (3)
     L (R_z(phi1_mean + x) n1 + G(phi2) n2) . t_a = 0,   ... . t_b = 0         (2)
     L (D [-(phi2 - phi2_ref) - (z1/z2) x] - target) = 0                        (1; Eq. (17))
 
 with G(phi2) = R(a2, phi2) R_y(S) (gear member frame -> fixed frame, docs/conventions.md), a2 = (sin S, 0, cos S),
+o1, o2 the member-frame origins (pitch apexes) in the fixed frame: zero for intersecting axes; for a hypoid pair
+(``HypoidPairKinematics``, crossed axes at the offset E) o1 = (0, E, 0) + t1 a1 on the pinion axis and o2 = t2 a2 on
+the gear axis, so that the pinion turns about a1 = +z through o1 and the gear about a2 through o2 (the axes pass
+through the origins, which is why the rotation columns of the Jacobian do not change),
 t_a, t_b two fixed unit vectors across the mean normal and L = |M|. For the mean contact point the last equation is
 L (E_m1 - E_m10) = 0. The pinion is generated with the local offset law E(p) = E_m1 + E' (p - psi_c1) (user sign;
 the kernel sign is negated, ``MachineSettings.kernel_params``), so its point depends on E_m1 and on the rate E' (given
@@ -82,7 +86,7 @@ def _pinion_jet(prm, phi, psi, cst, rate, out):
 @kernel
 def _system(prm1, prm2, z, x, target, rate, is_mean, c, F, J, uu, S1, S2, Sp, Sm, G):
     """F (6,) and J (6, 6) of one system at z (6,); u1, u2 into ``uu (2,)``. ``c`` holds the constants
-    (phi1_mean, shaft angle, ratio z1/z2, drive sign, phi2_ref, L, E_m10, t_a (3), t_b (3))."""
+    (phi1_mean, shaft angle, ratio z1/z2, drive sign, phi2_ref, L, E_m10, t_a (3), t_b (3), o1 (3), o2 (3))."""
     phi1m, S, ratio, drive, phi2_ref, L, off0 = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
     cst = -z[5] + rate * z[1]   # kernel constant term of the pinion's offset law
     h = _H_OFFSET
@@ -125,7 +129,7 @@ def _system(prm1, prm2, z, x, target, rate, is_mean, c, F, J, uu, S1, S2, Sp, Sm
     ta0, ta1, ta2, tb0, tb1, tb2 = c[7], c[8], c[9], c[10], c[11], c[12]
     sn = np.empty(3)
     for i in range(3):
-        F[i] = Pf[i, 0] - Gf[i, 0]
+        F[i] = c[13 + i] + Pf[i, 0] - c[16 + i] - Gf[i, 0]
         sn[i] = Pf[i, 1] + Gf[i, 1]
     F[3] = L * (sn[0] * ta0 + sn[1] * ta1 + sn[2] * ta2)
     F[4] = L * (sn[0] * tb0 + sn[1] * tb1 + sn[2] * tb2)
@@ -183,10 +187,10 @@ def _lu_step(J, F, dx):
             for j in range(k, n):
                 J[i, j] -= m * J[k, j]
             F[i] -= m * F[k]
-    for i in range(n - 1, -1, -1):
+    for i in range(n - 1, -1, -1):     # back substitution of J y = F with dx = -y already known for j > i
         s = F[i]
         for j in range(i + 1, n):
-            s -= J[i, j] * dx[j]
+            s += J[i, j] * dx[j]
         dx[i] = -s / J[i, i]
 
 

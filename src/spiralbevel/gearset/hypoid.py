@@ -20,6 +20,9 @@ __all__ = ["hypoid_easeoff_maps", "hypoid_pair", "setup_hypoid_flanks"]
 
 #: positions of the TCA that checks the bearing of a synthesized hypoid pair over one mesh cycle
 _CHECK_POSITIONS = 41
+#: design-file keys of the multi-point control's arguments (``[synthesis] motion_curve = "cmc"``)
+_CMC_PATHS = {"control_points": "synthesis.control_points", "n_control": "synthesis.control_points",
+              "interpolation": "synthesis.offset_interpolation"}
 
 #: default synthesis against a Formate gear: semi-major axis of the contact ellipse as a fraction of the face width,
 #: and the pinion settings solved (modified roll 2C in place of the blank offset). The Formate gear's straight profile
@@ -113,9 +116,6 @@ def _synthesize(spec, blank, setups):
     sy = effective_synthesis(spec, blank)
     if sy is None:
         return {}, {}
-    if sy.motion_curve != "parabolic":
-        raise DesignError.single("synthesis.motion_curve", sy.motion_curve, "'parabolic' for a hypoid pair", "-",
-                                 "multi-point control of a hypoid pinion is not supported yet")
     default = getattr(sy, "_default", False)
     if default and is_formate(spec):
         sy = sy.model_copy(update=dict(semi_major_axis=FORMATE_SEMI_MAJOR_FRACTION * float(blank.b2),
@@ -149,6 +149,16 @@ def _synthesize(spec, blank, setups):
                                    getattr(last, "last", None)) from last
         off, res, eta = best
         note = "" if off == 0 else f"; bearing off the flanks at {off} of {_CHECK_POSITIONS} positions"
+        if sy.motion_curve == "cmc":    # multi-point control of the blank offset (synthesis/hypoid_multipoint.py)
+            from ..meshing.synthesis.hypoid_multipoint import design_hypoid_cmc
+            from .problems import restated
+
+            try:
+                res = design_hypoid_cmc(res, te_magnitude=sy.te_magnitude * ARCSEC, n_control=sy.control_points,
+                                        interpolation=sy.offset_interpolation, n_positions=spec.tca.positions)
+            except DesignError as err:
+                raise restated(err, _CMC_PATHS, default="synthesis") from err
+            note += f"; multi-point control to the CMC, {sy.control_points} points, {sy.offset_interpolation} law"
         new[(Member.PINION, s1)] = FlankSetup(
             Member.PINION, s1, res.pinion_cutter, res.pinion_settings, res.pinion_flank,
             f"hypoid local synthesis ({name} side, path {eta:g} deg, free = {sy.free}{note})")

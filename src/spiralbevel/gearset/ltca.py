@@ -30,11 +30,13 @@ def _tooth_grids(grids, member, tca_side, surface_rotation, rot):
     return cx @ _rz(surface_rotation).T, cc @ _rz(surface_rotation + rot).T
 
 
-def _surface_peak(res, tca):
-    """Largest pressure (N/mm^2) over the loaded points of pairs in surface contact (TCA status ok/line)."""
+def _surface_peak(res, model):
+    """Largest pressure (N/mm^2) over the loaded points of pairs in surface contact (not ``PairContact.edge``: TCA
+    status ok/line)."""
     best = 0.0
     for i, (pr, p) in enumerate(zip(res.pair_of_point, res.pressure)):
-        surf = np.asarray(tca.status_pairs[i])[np.asarray(pr, int)] != ContactStatus.EDGE
+        edge = np.array([pc is not None and pc.edge for pc in model.positions[i].pairs], bool)
+        surf = ~edge[np.asarray(pr, int)]
         if np.any(surf):
             best = max(best, float(np.nanmax(np.asarray(p)[surf], initial=0.0)))
     return best
@@ -103,7 +105,7 @@ def run_ltca(blank, setups, lt, pair=None):
         "max_contact_pressure_N_per_mm2": float(np.nanmax(res.max_pressure)),
         # surface contacts only: at an edge contact (a sharp boundary curve of one flank on the other, TCA status
         # edge) the pressure peaks at the edge and grows with the grid; the surface-contact peak is the converged one
-        "max_contact_pressure_surface_N_per_mm2": _surface_peak(res, tca),
+        "max_contact_pressure_surface_N_per_mm2": _surface_peak(res, model),
         "edge_contact_positions": int(np.sum(tca.status == ContactStatus.EDGE)),
         # the pressure is that of the solved field on each contact's own grid (uniform-pressure cells); the grid of
         # each position and pair spans 1.25 x the Hertz ellipse of that contact at an approach of 4 x 0.00635 mm

@@ -58,6 +58,9 @@ def run_hypoid(gs, out, steps, report, summary):
             results[name] = res
             if outline is not None:
                 outlines[name] = outline
+        from .hypoid_cmc import hypoid_cmc_report
+
+        hypoid_cmc_report(report, summary, synth, spec.tca.positions)   # [synthesis] motion_curve = "cmc"
     with steps.step("ease-off (hypoid conjugate) and measurement grids"):
         from .hypoid import hypoid_easeoff_maps
         from .inspection import measurement_files

@@ -27,8 +27,8 @@ NOTES = (
 
 HYPOID_NOTES = (
     "l_bt, l_br and Z_LS: the length of the contact lines away from the middle line follows the form that "
-    "reproduces ISO/TR 10300-30 Sample 1; on its hypoid Sample 2 it gives a larger Z_LS than the report "
-    "(see docs/rating.md)",
+    "reproduces ISO/TR 10300-30 Sample 1 and its hypoid Sample 3; on its hypoid Sample 2 it gives a larger Z_LS "
+    "than the report (see docs/rating.md)",
     "Z_X = 1, Z_W = 1 (both members surface-hardened), Y_ST = 2; Z_Hyp is the given rating.hypoid_factor "
     "(ISO 10300-2's hypoid factor is not computed)",
     "K_Halpha, K_Falpha fall to 1 at a relative offset 2a/dm2 >= 0.1 (see docs/rating.md)",

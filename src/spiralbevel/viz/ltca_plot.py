@@ -44,6 +44,13 @@ def plot_ltca(result, member: str = "gear", fig=None, outline=None, title=None):
                  else None)
     ax1.plot(x, result.te_unloaded, "k-", lw=1.5, label="unloaded")
     ax1.plot(x, result.te_loaded, "r-", lw=1.5, label=f"loaded, T = {result.torque / 1000:.4g} N m")
+    # the range of the loaded and unloaded TE: pairs that trail far below it (edge contacts followed for the loaded
+    # solve, carrying no load) are clipped
+    band = np.concatenate([np.asarray(result.te_unloaded, float), np.asarray(result.te_loaded, float)])
+    if np.isfinite(band).any():
+        lo, hi = np.nanmin(band), np.nanmax(band)
+        pad = 0.25 * (hi - lo) + 1.0
+        ax1.set_ylim(lo - pad, hi + pad)
     ax1.set_xlabel("pinion rotation φ1 − φ10 (deg)")
     ax1.set_ylabel("transmission error (arcsec)")
     ax1.legend(fontsize=7)

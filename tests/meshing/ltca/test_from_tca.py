@@ -18,10 +18,12 @@ from spiralbevel.errors import DesignError, MissingDependencyError, NoContactErr
 from spiralbevel.job.logspiral_tca import contact_surface
 from spiralbevel.meshing.contact_surface import NormalDeviation, principal_curvatures, quadratic_crowning
 from spiralbevel.meshing.kinematics import BevelPairKinematics
+from spiralbevel.meshing.contact_problem import ContactProblem
 from spiralbevel.meshing.ltca.from_tca import contact_positions, loaded_tca, ltca_model
 from spiralbevel.meshing.ltca.locate import locate_on_grid
 from spiralbevel.meshing.ltca.ltca import ContactPosition, run_ltca
 from spiralbevel.meshing.ltca.separation import surface_separations
+from spiralbevel.meshing.ltca.trailing import follow_trailing_edges
 from spiralbevel.meshing.misalignment import Misalignment
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ContactStatus
@@ -76,13 +78,18 @@ def test_small_torque_gives_the_unloaded_te_of_the_tca(setup, model):
     assert np.max(np.abs(res.te_unloaded - te_tca)) < 1e-3
     assert np.max(np.abs(res.te_loaded - te_tca)) < 1e-3
     # per pair: the TCA's TE of every surface contact; at an edge the TE of the edge contact where TCA solved one
-    # (edge contacts carry load), else no TE (NaN)
+    # (edge contacts carry load), else no TE (NaN); where the TCA lost a pair that trails the leading one, the
+    # trailing edge contact followed for the loaded TCA (tests/meshing/ltca/test_trailing_edges.py checks those)
     tca = setup["tca"]
-    surface = np.asarray(tca.status_pairs) != ContactStatus.EDGE
+    _, followed = follow_trailing_edges(ContactProblem(setup["p"], setup["g"], setup["kin"], None), tca)
+    assert followed.any() and np.all(np.isfinite(res.te_pairs[followed]))
+    assert np.all(res.te_pairs[followed] <= res.te_unloaded[:, None].repeat(followed.shape[1], 1)[followed] + 1e-9)
+    surface = (np.asarray(tca.status_pairs) != ContactStatus.EDGE) & ~followed
     np.testing.assert_allclose(res.te_pairs[surface], tca.te_pairs_arcsec[surface], atol=1e-9)
     edge_te = tca.te_pairs_arcsec[~surface]
     np.testing.assert_allclose(res.te_pairs[~surface][np.isfinite(edge_te)], edge_te[np.isfinite(edge_te)], atol=1e-6)
-    assert np.all(np.isnan(res.te_pairs[~surface][~np.isfinite(edge_te)]))
+    lost = ~surface & ~followed & ~np.isfinite(tca.te_pairs_arcsec)
+    assert np.all(np.isnan(res.te_pairs[lost]))
 
 
 def test_torque_equilibrium_at_every_position(model):

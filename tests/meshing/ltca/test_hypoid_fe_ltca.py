@@ -114,7 +114,9 @@ def test_forces_balance_both_torques_about_each_members_own_axis(hypoid):
     gear angles."""
     m, tca, kin = hypoid["model"], hypoid["tca"], hypoid["syn"].kinematics
     assert kin.offset != 0.0
-    T = 2e5                                                                    # N mm
+    # N mm: at this torque one pair carries the load at 5 of the 11 positions (at 2e5 N mm the exiting pair's
+    # trailing edge contact shares the load all through the cycle)
+    T = 5e4
     res = m.run(T, approach_target=None)
     single = 0
     for i in range(len(res.force)):

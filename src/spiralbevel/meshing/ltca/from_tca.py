@@ -21,13 +21,16 @@ For every mesh position i and tooth pair k of the TCA (pinion tooth k against ge
 The LTCA driver then adds w_i = w_sep - te_k h_i with the lever arms h_i = ((q_i - o2) x n) . a2 (seed 001 Eq. (18),
 docs/theory/ltca.md, Eqs. (L1)-(L4)). Potential contact points whose foot lies off a loaded flank grid are dropped, so
 edge
-contact of the TCA (extended surfaces) becomes contact along the flank edge.
+contact of the TCA (extended surfaces) becomes contact along the flank edge. Pairs that the TCA leaves without
+contact because another pair leads, although their real flanks touch along an edge a little behind it, get that
+trailing edge contact (:mod:`.trailing`): under load they may carry load.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import logging
+import warnings
 from dataclasses import dataclass
 from typing import Any, Optional
 
@@ -35,7 +38,7 @@ import numpy as np
 
 from ..._core.rotations import rot_z
 from ..._core.tca import relative_curvature, weingarten
-from ...errors import DesignError, NoContactError
+from ...errors import DesignError, NoContactError, SpiralBevelWarning
 from ..contact_problem import ContactProblem
 from ..ellipse import hertz_semi_axes
 from ..tca_result import ContactStatus
@@ -44,6 +47,8 @@ from .halfspace import STEEL, Material, contact_modulus
 from .locate import locate_on_grid
 from .ltca import APPROACH_TARGET, ContactPosition, PairContact, _check, run_ltca
 from .ltca import torque_for_approach as _torque_for_approach
+from .result import ARCSEC
+from .trailing import TRAILING_WINDOW, follow_trailing_edges
 from .mesher import mesh_tooth_segment
 from .result import LTCAResult
 from .separation import posed_separations
@@ -213,7 +218,7 @@ def default_extents(lam, approach=SIZING_APPROACH, margin=SIZING_MARGIN, cap=SIZ
 
 
 def contact_positions(pinion, gear, kinematics, tca, *, misalignment=None, grid=(21, 7), half_length=None,
-                      half_width=None):
+                      half_width=None, trailing_window=None):
     """Unloaded contact of every TCA position and pair as LTCA input (see the module docstring).
 
     Parameters
@@ -231,6 +236,10 @@ def contact_positions(pinion, gear, kinematics, tca, *, misalignment=None, grid=
     half_length, half_width : float, mm, optional
         Half extents of that grid at every position and pair; default: each contact's own Hertz ellipse
         (:func:`default_extents`, stored in ``PairContact.extents``).
+    trailing_window : float, rad, optional
+        Edge contacts that the TCA does not follow because another pair leads (a pair whose surface contact ran off
+        its flank) are added where they trail the leading contact by at most this TE difference
+        (:func:`~spiralbevel.meshing.ltca.trailing.follow_trailing_edges`; default 1 % of the gear's angular pitch).
 
     Returns
     -------
@@ -245,6 +254,7 @@ def contact_positions(pinion, gear, kinematics, tca, *, misalignment=None, grid=
         A position where the TCA found no contact for any pair.
     """
     _check(1.0, [None], grid, half_length, half_width)
+    tca, _ = follow_trailing_edges(ContactProblem(pinion, gear, kinematics, misalignment), tca, trailing_window)
     st = _pair_states(pinion, gear, kinematics, tca, misalignment)
     none = np.flatnonzero(~st["valid"].any(axis=1))
     if none.size:
@@ -278,7 +288,8 @@ def contact_positions(pinion, gear, kinematics, tca, *, misalignment=None, grid=
         table[i][j] = PairContact(
             point=st["P"][a], normal=st["n"][a], direction=st["e1"][a], te=float(tca.te_pairs[i, j]),
             separation=w[a], to_pinion=(R1f[a].T, st["o1"][a]), to_gear=(R2f[a].T, st["o2"][a]),
-            tooth_pinion=int(st["k"][a]), tooth_gear=-int(st["k"][a]), extents=(float(ext[a, 0]), float(ext[a, 1])))
+            tooth_pinion=int(st["k"][a]), tooth_gear=-int(st["k"][a]), extents=(float(ext[a, 0]), float(ext[a, 1])),
+            edge=bool(tca.status_pairs[i, j] == ContactStatus.EDGE))
     positions = [ContactPosition(float(tca.phi1[i] - tca.phi1_mean), table[i]) for i in range(n_pos)]
     return positions, (half_length, half_width)
 
@@ -302,6 +313,9 @@ class LTCAModel:
     pairs : tuple of int
         Tooth-pair indices k of the TCA (pinion tooth k, gear tooth k), in the order of each position's pairs.
     material_pinion, material_gear : Material
+    trailing_window : float or None, rad
+        TE lag up to which trailing edge contacts were followed (:func:`.trailing.follow_trailing_edges`);
+        :meth:`run` warns when the loaded pair lags its unloaded position by more (pairs beyond may then touch).
     """
 
     positions: list
@@ -317,6 +331,7 @@ class LTCAModel:
     pairs: tuple
     material_pinion: Material = STEEL
     material_gear: Material = STEEL
+    trailing_window: Optional[float] = None
 
     def _kw(self):
         return dict(gear_axis=self.gear_axis, gear_origin=self.gear_origin, grid=self.grid,
@@ -337,6 +352,12 @@ class LTCAModel:
             p1.append(np.einsum("mij,mj->mi", rot_z(-2 * np.pi * k / self.z1), x1))
             p2.append(np.einsum("mij,mj->mi", rot_z(2 * np.pi * k / self.z2), x2))
         names = tuple(f"pair {int(k):+d}" for k in ks)
+        if self.trailing_window is not None:
+            lag = np.nanmax(np.asarray(res.te_unloaded) - np.asarray(res.te_loaded), initial=0.0) * ARCSEC
+            if lag > self.trailing_window:
+                warnings.warn(f"loaded TCA: the loaded pair lags its unloaded position by {lag / ARCSEC:.1f} arcsec, "
+                              f"more than the {self.trailing_window / ARCSEC:.1f} arcsec up to which trailing edge "
+                              "contacts were followed; pairs beyond may touch", SpiralBevelWarning, stacklevel=2)
         return dataclasses.replace(res, points1=p1, points2=p2, pair_names=names)
 
     def approach_torque(self, target: float = APPROACH_TARGET, position: int | None = None) -> float:
@@ -378,9 +399,10 @@ def ltca_model(pinion_surface, gear_surface, kinematics, tca_result, *, pinion_g
     if len(sides) != 2 or any(s not in SIDES for s in sides):
         raise DesignError.single("sides", sides, "(pinion side, gear side), each 'convex' or 'concave'", "-",
                                  "loaded flanks")
+    window = TRAILING_WINDOW * 2 * np.pi / z2
     positions, (hl, hw) = contact_positions(pinion_surface, gear_surface, kinematics, tca_result,
                                             misalignment=misalignment, grid=grid, half_length=half_length,
-                                            half_width=half_width)
+                                            half_width=half_width, trailing_window=window)
     prob = ContactProblem(pinion_surface, gear_surface, kinematics, misalignment)
     a1, o1, a2, o2, _ = prob.axes
     comps: list[Any] = [None, None]
@@ -400,7 +422,7 @@ def ltca_model(pinion_surface, gear_surface, kinematics, tca_result, *, pinion_g
                                             cache_dir=cache_dir)
     return LTCAModel(positions, comps[0], comps[1], np.asarray(a2, float), np.asarray(o2, float), tuple(grid),
                      hl, hw, z1, z2,
-                     tuple(int(k) for k in tca_result.pairs), material, material)
+                     tuple(int(k) for k in tca_result.pairs), material, material, window)
 
 
 def loaded_tca(pinion_surface, gear_surface, kinematics, tca_result, torque: float, *, pinion_grids=None,

@@ -64,6 +64,10 @@ class PairContact:
     extents : (float, float), mm, optional
         Half extents (along ``direction``, across it) of this pair's potential-contact grid; None: the driver's
         ``half_length``, ``half_width``.
+    edge : bool
+        True for an edge contact (a flank boundary of one member against the other's flank: TCA status EDGE, or a
+        trailing edge contact added by :func:`~spiralbevel.meshing.ltca.trailing.follow_trailing_edges`); its
+        pressure peaks at the edge and grows with the grid.
     """
 
     point: np.ndarray
@@ -77,6 +81,7 @@ class PairContact:
     tooth_pinion: int = 0
     tooth_gear: int = 0
     extents: Optional[tuple] = None
+    edge: bool = False
 
 
 @dataclass(frozen=True)

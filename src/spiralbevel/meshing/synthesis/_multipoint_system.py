@@ -7,11 +7,13 @@ instantaneous blank offset (mm, user sign of ``MachineSettings.blank_offset``). 
 eliminated by the equations of meshing of generation f_1 = f_2 = 0 (solved inside the compiled jet, which returns them),
 so the 8 x 8 system of docs/theory/tca.md, Eqs. (T5), (T8) becomes 6 x 6 here:
 
-    R(a1, phi1) r1(phi_1, psi_c1; E_m1, E_m1') - R(a2, phi2) R_y(S) r2(phi_2, psi_c2) = 0      (3, mm)
+    o1 + R(a1, phi1) r1(phi_1, psi_c1; E_m1, E_m1') - o2 - R(a2, phi2) R_y(S) r2(phi_2, psi_c2) = 0   (3, mm)
     L (n1 + n2) . t_a = 0,  L (n1 + n2) . t_b = 0                                        (2, mm)
     L [TE(phi2) - target] = 0                                                            (1, mm; Eq. (17))
 
-with TE = D [-(phi2 - phi20) - (z1/z2)(phi1 - phi10)] (docs/conventions.md), t_a, t_b two fixed unit vectors across the
+with o1, o2 the pitch apexes (member-frame origins) of the pair: zero for intersecting axes, those of
+``HypoidPairKinematics.axes()`` (pinion axis through (0, E, 0), apexes t1, t2 along the axes) for a hypoid pair,
+TE = D [-(phi2 - phi20) - (z1/z2)(phi1 - phi10)] (docs/conventions.md), t_a, t_b two fixed unit vectors across the
 mean normal and L a length (|M|) that turns the normal and TE equations into mm. The pinion point at psi_c1 depends on
 the blank offset only through its value E_m1 and its rate E_m1' = dE_m1/dpsi_c at that instant (the rate enters the
 relative velocity of generation, docs/theory/generation.md, Eqs. (G5)-(G6)); the rate is given per system (frozen during
@@ -65,6 +67,21 @@ def _kernel_params(gen, **mp):
     return _gbj.parameters(gen.cp, dict(gen.mp, **mp), gen.hand is Hand.RIGHT, 0.0)
 
 
+def _origins(kin):
+    """Pitch apexes o1, o2 ((3,) mm each, fixed frame) of the aligned pair: zero for intersecting axes
+    (``BevelPairKinematics``), ``kin.axes()`` for a pair with crossed axes (``HypoidPairKinematics``), whose axes must
+    be the kernel's a1 = +z and a2 = (sin S, 0, cos S)."""
+    place = getattr(kin, "axes", None)
+    if not callable(place):
+        return np.zeros(3), np.zeros(3)
+    a1, o1, a2, o2, _ = place()
+    S = float(kin.shaft_angle)
+    if not (np.allclose(a1, [0.0, 0.0, 1.0], rtol=0, atol=1e-15)
+            and np.allclose(a2, [np.sin(S), 0.0, np.cos(S)], rtol=0, atol=1e-15)):
+        raise ValueError("multi-point control: the pair's axes are not the aligned a1 = +z, a2 = (sin S, 0, cos S)")
+    return np.asarray(o1, float), np.asarray(o2, float)
+
+
 class MultiPointSystem:
     """Compiled control-point systems of one synthesized pair.
 
@@ -91,6 +108,7 @@ class MultiPointSystem:
         a = np.cross(n, [1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.cross(n, [0.0, 1.0, 0.0])
         a /= np.linalg.norm(a)
         self.t_a, self.t_b = a, np.cross(n, a)
+        self.o1, self.o2 = _origins(self.kin)
         # the pinion's offset law is set per system inside the kernel (E and E_rate of the vector)
         self.prm1 = _kernel_params(self.gen, E=0.0, E_rate=0.0, E_poly=(), E_table=None)
         self.prm2 = _kernel_params(self.gear.generator)
@@ -102,7 +120,7 @@ class MultiPointSystem:
 
     def _constants(self, phi2_ref):
         return np.array([self.phi1_mean, self.kin.shaft_angle, self.ratio, float(self.drive), float(phi2_ref),
-                         self.length, self.offset0, *self.t_a, *self.t_b])
+                         self.length, self.offset0, *self.t_a, *self.t_b, *self.o1, *self.o2])
 
     def solve(self, y0, x, target, rate, phi2_ref, mean, tol=1e-11, max_iter=40) -> SystemResult:
         """Newton on every system from ``y0 (m, 6)`` (z, see module) for offsets ``x (m,)`` rad, TE targets ``(m,)``

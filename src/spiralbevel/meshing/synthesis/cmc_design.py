@@ -35,11 +35,11 @@ def active_range(synthesis, step: float | None = None) -> tuple[float, float]:
     sysm = MultiPointSystem(synthesis)
     T = 2 * math.pi / sysm.kin.z1
     h = step if step is not None else T / 24
-    k, xs = 0, []
+    k, steps = 0, []
     while k * h < T / 2:
         k += 1
-        xs.append(min(k * h, T / 2))
-    xs = np.array([xs, [-v for v in xs]])
+        steps.append(min(k * h, T / 2))
+    xs = np.array([steps, [-v for v in steps]])
     z, u, count = sysm.march(xs)
     pin = _Surface(synthesis.pinion_flank, 0.0, synthesis.pinion_params)
     gear = _Surface(synthesis.gear_flank, 0.0, synthesis.mean.gear_params)
