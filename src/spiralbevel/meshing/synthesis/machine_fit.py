@@ -1,8 +1,10 @@
 """Pinion machine settings that generate prescribed first- and second-order geometry at one point.
 
-The generated pinion flank (``spiralbevel.generation``) is a black box (phi, psi_c) -> point, outward normal, principal
-curvatures (curvature transfer, docs/theory/generation.md, Eqs. (G13)-(G15) (#curvature-transfer)). The mean point is
-generated at the cradle angle psi_c = 0 (a gauge: the cradle angle q then places the cutter). Seven conditions, all
+The generated pinion point at the cradle angle psi_c = 0 (a gauge: the cradle angle q then places the cutter) is
+evaluated by the compiled residual of :mod:`spiralbevel._core.settings_fit`: point, outward normal and their
+derivatives from the compiled first-order jet of the generated flank in the (phi, psi_c) chart, the curvature tensor
+from them by Weingarten's relation (the same tensor as the curvature transfer of docs/theory/generation.md, Eqs.
+(G13)-(G15) (#curvature-transfer), which the tests compare), and solved by a compiled Newton. Seven conditions, all
 invariant under rotation about the pinion axis (the pinion's rotation phi10 in the pair is free): axial position and
 radius of the point (2), axial and radial components of the unit normal (2), and the three components of the curvature
 tensor in the tangent basis of :func:`~spiralbevel.meshing.synthesis._relations.tangent_components` (3). Unknowns: the
@@ -14,12 +16,15 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import math
 
 import numpy as np
 
 from ..._core.continuation import arclength_continuation
-from ..._core.newton import solve_batched
-from ...conventions import Member
+from ..._core import blade_locate as _bl
+from ..._core import generation_blade_jet as _bj
+from ..._core import settings_fit as _sf
+from ...conventions import TOL, Hand, Member
 from ...errors import ConvergenceError, DesignError, GeometryError, SpiralBevelError
 from ...generation import generate_flank
 from ...generation.meshing import Generator
@@ -57,6 +62,13 @@ _BAD = 1e6
 # only has to be followed, not solved to the end tolerance (which the evaluation noise of the curvatures, about
 # 1e-7 in scaled units, would not always allow)
 _PATH_TOL = 1e-6
+# relative step of the central-difference Jacobian: about eps^(1/3), where truncation (h^2) and rounding (eps / h)
+# errors balance
+_REL_STEP = 6e-6
+# the start's location on the target circle: Newton step caps (rad) in (phi, psi_c) and the cutter-angle window about
+# the reference angle, as the flank's blade locator (generation/locate_blade.py)
+_LOCATE_STEP = np.array([0.05, 0.05])
+_LOCATE_PHI_SPAN = 0.75
 
 
 def _value(cutter, settings, name):
@@ -137,10 +149,15 @@ def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_D
     most spiral angles, but it folds inside the face at low ones (docs/conventions.md, "Fold of generation"): there
     the point of a given u at psi_c = 0 ceases to exist along the way to the target, which stalled the solve.
 
-    Newton's method from the start first; if it fails, pseudo-arclength continuation
+    The start's cutter angle is that of the flank point on the target circle (one compiled locator solve, else the
+    flank's table locator). Newton's method (compiled, central-difference Jacobian, steps capped per unknown) from the
+    start first; if it fails, pseudo-arclength continuation
     (:func:`~spiralbevel._core.continuation.arclength_continuation`) of the homotopy that moves the goal linearly
     from the start's own invariants to the target; it follows the solution curve through turning points, where a
     continuation in the goal alone stalls.
+
+    Below the fillet junction the residual keeps the straight (or arc) blade extended, as the chart's blade
+    parameter does: continuous for iterates that pass there; the solution itself lies on the blade.
     """
     free = tuple(free)
     known = _CUTTER + _SETTINGS
@@ -154,31 +171,26 @@ def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_D
     hand = flank0.hand
     # start: the cutter angle of the flank point on the target circle (the cutter of the basic settings passes near
     # it), else the blade junction's at psi_c = 0
-    try:
-        theta0 = float(flank0.locate(target[0], target[1], curvature=False).theta)
-    except SpiralBevelError:
-        theta0 = float(flank0.evaluate(flank0.generator.cp["u_j"], 0.0, curvature=False).theta)
+    theta0 = _start_on_circle(flank0.generator, target[0], target[1])
+    if theta0 is None:
+        try:
+            theta0 = float(flank0.locate(target[0], target[1], curvature=False).theta)
+        except SpiralBevelError:
+            theta0 = float(flank0.evaluate(flank0.generator.cp["u_j"], 0.0, curvature=False).theta)
     x0 = np.array([_value(cutter0, settings0, f) for f in free] + [theta0])
-
-    def invariants(x):
-        c, s = build(cutter0, settings0, free, x[:6])
-        return _invariants(blade_point(Generator(c, s, hand), x[6]))[0]   # the flank's kernel, without the outline
+    kin = _kernel_inputs(cutter0, settings0, hand, free)
 
     def residual(x, goal):
-        try:
-            return (invariants(x) - goal) * w
-        except SpiralBevelError:
-            return np.full(7, _BAD)
+        f = np.empty(7)
+        _sf.residual(*kin, np.asarray(x, float), np.asarray(goal, float), w, f)
+        return f
 
     step = np.array([_MAX_STEP[f] for f in free] + [_MAX_STEP_THETA])
-    res = solve_batched(lambda x: residual(x, target), x0, tol=tol, max_iter=max_iter, max_step=step)
-    x, ok, iterations, resid, method = res.x, bool(res.converged), int(res.iterations), float(res.residual), "newton"
+    x, ok, iterations, resid = _sf.newton(*kin, x0, target, w, step, tol, max_iter, _REL_STEP)
+    ok, iterations, resid, method = bool(ok), int(iterations), float(resid), "newton"
     if not ok:
-        try:
-            inv0 = invariants(x0)
-        except SpiralBevelError:
-            inv0 = None
-        if inv0 is not None:
+        inv0 = np.empty(7)
+        if _sf.invariants(*kin, x0, inv0)[0]:
             arc = arclength_continuation(lambda x, t: residual(x, inv0 + t * (target - inv0)), x0, step, tol=tol,
                                          path_tol=_PATH_TOL * max(1.0, float(np.max(np.abs((target - inv0) * w)))))
             _log.debug("arclength continuation: reached t = %.4f in %d steps, %d turning points, converged %s",
@@ -192,10 +204,41 @@ def fit_settings(cutter0, settings0, blank, side, target, target_nt, free=FREE_D
                                f"(free = {free}; scaled residual {resid:.3g})",
                                iterations=iterations, residual=resid, last=x)
     cutter, settings = build(cutter0, settings0, free, x[:6])
-    fp = blade_point(Generator(cutter, settings, hand), x[6])
-    _, nt = _invariants(fp)
+    _, nt, u = _sf.invariants(*kin, x, np.empty(7))
     if np.sign(nt) != np.sign(target_nt):
         raise ConvergenceError("pinion machine settings: Newton reached the mirror branch of the normal",
                                iterations=iterations, residual=resid, last=x)
-    return cutter, settings, float(fp.u), dict(theta=float(x[6]), iterations=iterations, residual=resid,
-                                               method=method)
+    return cutter, settings, float(u), dict(theta=float(x[6]), iterations=iterations, residual=resid,
+                                            method=method)
+
+
+def _start_on_circle(gen, axial, radius):
+    """Cutter angle theta (rad, as ``FlankPoints.theta``) of the blade point on the circle (axial, radius) mm, by
+    the compiled Newton of the flank locator (``_core.blade_locate``) from the reference angle at psi_c = 0 (where
+    the cutter circle crosses the root line: the middle of the locator's start table); None where that single start
+    does not reach a blade point inside the locator's window (the caller then locates with the whole table)."""
+    psi_ref = 0.0
+    phi_ref = float(gen.reference_angle(psi_ref))
+    prm = _bj.parameters(gen.cp, gen.mp, False, 0.0)
+    x, u, conv, _ = _bl.locate_axial_radius(prm, np.array([[phi_ref, psi_ref]]), np.array([float(axial)]),
+                                            np.array([float(radius)]), TOL.newton_abs * 10, TOL.max_iter,
+                                            _LOCATE_STEP)
+    phi, psi, u = float(x[0, 0]), float(x[0, 1]), float(u[0])
+    if not (conv[0] and u >= gen.cp["u_j"] - 1e-9):
+        return None
+    d = math.remainder(phi - float(gen.reference_angle(psi)), 2.0 * math.pi)
+    if abs(d) > _LOCATE_PHI_SPAN:
+        return None
+    return phi - (math.pi - gen.mp["q"] + psi)
+
+
+def _kernel_inputs(cutter0, settings0, hand, free):
+    """(prm0, cut, codes) of the compiled residual (``_core.settings_fit``) around the starting cutter and settings
+    (a free modified roll gets a first roll coefficient to solve, 0 = none)."""
+    if "modified_roll" in free and not settings0.modified_roll:
+        settings0 = settings0.replace(modified_roll=(0.0,))
+    g = Generator(cutter0, settings0, hand)
+    prm0 = _bj.parameters(g.cp, g.mp, g.hand is Hand.RIGHT, 0.0)
+    cut = np.array([g.cp["s"], g.cp["rho_f"], g.cp["rp"], g.cp["up"], float(cutter0.point_width)])
+    codes = np.array([_sf.CODES[f] for f in free], np.int64)
+    return prm0, cut, codes

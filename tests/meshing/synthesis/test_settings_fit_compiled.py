@@ -1,0 +1,140 @@
+"""The compiled settings-fit residual and Newton (``_core.settings_fit``) against plain per-point references: the
+numpy generated flank with curvatures by the curvature-transfer relations (``Generator.evaluate_blade``), and
+``scipy.optimize.root`` on that numpy residual."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import root
+
+from spiralbevel._core import settings_fit as sf
+from spiralbevel.conventions import Hand, Member, Side
+from spiralbevel.errors import SpiralBevelError
+from spiralbevel.generation import generate_flank
+from spiralbevel.generation.meshing import Generator
+from spiralbevel.machine import seed001_blank, seed001_settings
+from spiralbevel.meshing.synthesis import FREE_FIXED_BLADE, FREE_MODIFIED_ROLL, FREE_OFFSET, fit_settings
+from spiralbevel.meshing.synthesis.machine_fit import (_invariants, _kernel_inputs, _value, blade_point, build,
+                                                       point_invariants)
+
+# random perturbation half-widths of every unknown (mm, rad, -)
+SPREAD = dict(point_radius=2.0, blade_angle=0.02, radial_setting=2.0, cradle_angle=0.02, machine_root_angle=0.01,
+              machine_centre_to_back=0.5, sliding_base=0.5, blank_offset=2.0, ratio_of_roll=0.02, modified_roll=0.05)
+FREE_SETS = (FREE_OFFSET, FREE_MODIFIED_ROLL, FREE_FIXED_BLADE,
+             ("point_radius", "blade_angle", "radial_setting", "machine_root_angle", "sliding_base", "ratio_of_roll"))
+
+
+def _numpy_invariants(cutter0, settings0, hand, free, x):
+    """The plain reference: build the cutter and settings, evaluate the generated point in numpy."""
+    c, s = build(cutter0, settings0, free, x[:6])
+    fp = blade_point(Generator(c, s, hand), x[6])
+    inv, nt = _invariants(fp)
+    return inv, nt, float(fp.u)
+
+
+def _wrap(d):
+    """Differences of the unknowns with the cutter angle's taken modulo 2 pi."""
+    d = np.array(d, float)
+    d[6] = (d[6] + math.pi) % (2 * math.pi) - math.pi
+    return d
+
+
+def _cases():
+    blank = seed001_blank()
+    out = []
+    for (member, side), (c, s) in seed001_settings().items():
+        out.append((member, side, c, s))
+        # a circular-arc blade (profile crowning) on the same settings
+        arc = dataclasses.replace(c, profile_radius=400.0, profile_ref=4.0)
+        out.append((member, side, arc, s))
+    return blank, out
+
+
+@pytest.mark.parametrize("hand", [Hand.LEFT, Hand.RIGHT])
+def test_compiled_invariants_match_the_numpy_curvature_transfer(hand):
+    blank, cases = _cases()
+    rng = np.random.default_rng(13)
+    n_checked = 0
+    w = np.array([1.0, 1.0, blank.Rm, blank.Rm, blank.Rm**2, blank.Rm**2, blank.Rm**2])
+    for member, side, c0, s0 in cases:
+        theta_mid = float(generate_flank(c0, s0, blank, member, side).evaluate(
+            c0._params()["u_j"] + 4.0, 0.0, curvature=False).theta)
+        for k in range(25):
+            free = FREE_SETS[k % len(FREE_SETS)]
+            kin = _kernel_inputs(c0, s0, hand, free)
+            x = np.array([_value(c0, s0, f) + SPREAD[f] * rng.uniform(-1, 1) for f in free]
+                         + [theta_mid + 0.03 * rng.uniform(-1, 1)])
+            out = np.empty(7)
+            ok, nt, u = sf.invariants(*kin, x, out)
+            try:
+                ref, nt_ref, u_ref = _numpy_invariants(c0, s0, hand, free, x)
+            except SpiralBevelError:
+                assert not ok
+                continue
+            assert ok
+            assert u == pytest.approx(u_ref, abs=1e-9)
+            if u_ref < build(c0, s0, free, x[:6])[0]._params()["u_j"]:
+                # below the fillet junction the chart's blade parameter (the straight or arc blade extended, in both)
+                # is evaluated on the fillet's profile by numpy: not a generated point; the compiled residual keeps
+                # the extended blade, continuous for the Newton iterates that pass there
+                continue
+            # scaled units (mm, and curvatures times Rm^2): the two evaluations agree to rounding (about 1e-13);
+            # 1e-9 leaves room for the conditioning of the transfer relations near flat directions
+            np.testing.assert_allclose(out * w, ref * w, rtol=0, atol=1e-9)
+            assert nt == pytest.approx(nt_ref, abs=1e-12)
+            n_checked += 1
+    assert n_checked >= 80
+
+
+def test_invalid_cutter_or_settings_give_the_bad_residual():
+    blank, cases = _cases()
+    _, _, c0, s0 = cases[2]
+    kin = _kernel_inputs(c0, s0, Hand.LEFT, FREE_OFFSET)
+    x = np.array([_value(c0, s0, f) for f in FREE_OFFSET] + [0.0])
+    f = np.empty(7)
+    for j, bad in ((1, 0.5 * math.pi + 0.01), (2, -1.0), (4, 0.0)):   # blade angle, S, ratio of roll
+        y = x.copy()
+        y[j] = bad
+        with pytest.raises(SpiralBevelError):
+            build(c0, s0, FREE_OFFSET, y[:6])
+        sf.residual(*kin, y, np.zeros(7), np.ones(7), f)
+        assert np.all(f == sf.BAD)
+
+
+def test_fit_matches_scipy_root_on_the_numpy_residual():
+    """Targets generated by known settings (a random perturbation of the seed 001 pinion's): the compiled fit and
+    scipy's hybrid root finder on the numpy residual both recover them from the unperturbed start."""
+    blank = seed001_blank()
+    c0, s0 = seed001_settings()[(Member.PINION, Side.CONCAVE)]
+    rng = np.random.default_rng(7)
+    w = np.array([1.0, 1.0, blank.Rm, blank.Rm, blank.Rm**2, blank.Rm**2, blank.Rm**2])
+    hand = generate_flank(c0, s0, blank, Member.PINION, Side.CONCAVE).hand
+    for free in (FREE_OFFSET, FREE_MODIFIED_ROLL, FREE_FIXED_BLADE):
+        s_start = s0.replace(modified_roll=(0.0,)) if "modified_roll" in free else s0
+        x_true = np.array([_value(c0, s_start, f) + 0.3 * SPREAD[f] * rng.uniform(-1, 1) for f in free] + [0.0])
+        c_true, s_true = build(c0, s_start, free, x_true[:6])
+        fl_true = generate_flank(c_true, s_true, blank, Member.PINION, Side.CONCAVE)
+        fp = fl_true.evaluate(c_true._params()["u_j"] + 4.0, 0.0, curvature=False)
+        x_true[6] = float(fp.theta)
+        target, nt = point_invariants(fl_true, float(fp.u))
+
+        cutter, settings, u, info = fit_settings(c0, s_start, blank, Side.CONCAVE, target, nt, free)
+        x_fit = np.array([_value(cutter, settings, f) for f in free] + [info["theta"]])
+
+        x_start = np.array([_value(c0, s_start, f) for f in free] + [x_true[6]])
+
+        def fun(x, free=free, s_start=s_start, target=target):
+            try:
+                return (_numpy_invariants(c0, s_start, hand, free, x)[0] - target) * w
+            except SpiralBevelError:
+                return np.full(7, sf.BAD)
+
+        ref = root(fun, x_start, method="hybr", options=dict(xtol=1e-13))
+        assert ref.success, ref.message
+        # both solve to a scaled residual of 1e-9 (fit) or better (root); the Jacobian's conditioning turns that
+        # into about 1e-8 in the unknowns (mm, rad)
+        np.testing.assert_allclose(_wrap(x_fit - ref.x), 0.0, rtol=0, atol=1e-7)
+        np.testing.assert_allclose(_wrap(x_fit - x_true), 0.0, rtol=0, atol=1e-7)
+        assert u == pytest.approx(float(fp.u), abs=1e-7)
