@@ -2,7 +2,8 @@
 
 On the 12/41, 35 deg, module 5 design the derived pinion edge radius (1.27 mm) puts the generated fillet/blade
 junction 1.02-1.24 mm above the root cone, above the gear's top (the clearance, 0.88 mm): the refit must bring the
-junction below it everywhere along the face while leaving the blade (mean point, angles) bit-identical.
+junction below it everywhere along the face while leaving the blade (mean point, angles) bit-identical. A pinion
+whose settings lift its root is put back on the root cone with the same blade surface.
 """
 
 import dataclasses
@@ -13,8 +14,9 @@ import numpy as np
 import pytest
 
 from spiralbevel.conventions import Member, Side
+from spiralbevel.generation.basic_settings_solve import root_deviation
 from spiralbevel.generation.flank import generate_flank
-from spiralbevel.gearset.pinion_fillet import fit_pinion_edge_radius, gear_top_height, junction_height
+from spiralbevel.gearset.pinion_fillet import fit_pinion_edge_radius, gear_top_height, junction_height, lower_root
 from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
 from spiralbevel.job.blank import blank_from_design
@@ -89,3 +91,29 @@ def test_refit_keeps_the_junction_below_the_gear_top_and_the_blade(case):
     assert a.pressure_angle == pytest.approx(b.pressure_angle, abs=1e-13)
     assert a.spiral_angle == pytest.approx(b.spiral_angle, abs=1e-13)
     assert math.isfinite(rho) and rho > 0.0
+
+
+def test_lower_root_puts_the_root_on_the_cone_with_the_same_blade(case):
+    """A pinion whose settings lift the root 0.3 mm (sliding base - 0.3 mm) is put back on the root cone; the
+    blade surface is the same point set: the old blade parameter u is u + Delta / cos(alpha) of the extended blade."""
+    blank, st = case
+    lifted = dataclasses.replace(st.settings, sliding_base=st.settings.sliding_base - 0.3)
+    flank = generate_flank(st.cutter, lifted, blank, Member.PINION, Side.CONVEX)
+    dev = np.array(root_deviation(flank), float)
+    assert np.all(dev > 0.29)                               # the case: the root 0.3 mm above the cone
+    new = lower_root(blank, Result(st.cutter, lifted, flank))
+    delta = new.pinion_settings.sliding_base - lifted.sliding_base
+    assert delta == pytest.approx(dev.min(), abs=1e-15)
+    # on the root cone where it was lowest, nowhere below it (root_deviation samples 2e-4 rho above the tip; the
+    # lift varies along the face by the 1e-5 mm of the basic root)
+    after = np.array(root_deviation(new.pinion_flank), float)
+    assert after.min() == pytest.approx(0.0, abs=1e-3) and np.all(after > -1e-3)
+    # the same blade surface: independent evaluation of both generators at corresponding parameters
+    c = st.cutter
+    u_j = c.fillet_range[1]
+    u, psi = np.meshgrid(np.linspace(u_j + 0.5, u_j + 6.0, 12), np.linspace(-0.15, 0.15, 7))
+    old = flank.generator.points(u, psi)
+    shifted = new.pinion_flank.generator.points(u + delta / math.cos(c.blade_angle), psi)
+    assert np.max(np.abs(shifted - old)) < 1e-11            # round-off of the generation kernel at ~100 mm
+    assert new.pinion_cutter.blade_angle == c.blade_angle
+    assert new.pinion_cutter.point_width == pytest.approx(c.point_width - 2.0 * delta * math.tan(c.blade_angle))

@@ -275,6 +275,9 @@ def _synthesize_sides(sy, blank, setups, syn, refit=None):
                                    "gear_set.cutter_radius or gear_set.mean_spiral_angle", tried, float("inf"), None)
         _, res, free = best
         source = f"local synthesis ({name} side, free = {free})"
+        if res.pinion_cutter.point_width < pin.cutter.point_width - 1e-9:   # gearset/pinion_fillet.lower_root
+            source += (f"; root lowered onto the root cone: blade extended to a point width of "
+                       f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
         if res.pinion_cutter.edge_radius < pin.cutter.edge_radius:
             source += (f"; edge radius {res.pinion_cutter.edge_radius:.3f} mm refitted to keep the generated fillet "
                        f"below the gear's top (derived {pin.cutter.edge_radius:.3f} mm)")
@@ -308,14 +311,15 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
     over the whole mesh cycle (TCA: real contact, no edge, at every position); if none does, the one with the fewest
     positions off the flank. At most ``max_syntheses`` syntheses (failed ones included) for the default.
 
-    With ``refit``, a default candidate whose bearing leaves the flanks at some position gets its pinion's derived
-    edge radius refitted to keep the generated fillet below the gear's top
-    (:func:`~spiralbevel.gearset.pinion_fillet.fit_pinion_edge_radius`; blade and settings unchanged), kept when
-    the TCA then has fewer positions off the flanks.
+    With ``refit``, a default candidate whose bearing leaves the flanks at some position gets its pinion's root put
+    back on the root cone (:func:`~spiralbevel.gearset.pinion_fillet.lower_root`) and its derived edge radius
+    refitted to keep the generated fillet below the gear's top
+    (:func:`~spiralbevel.gearset.pinion_fillet.fit_pinion_edge_radius`), both with the blade surface unchanged;
+    kept when the TCA then has fewer positions off the flanks.
 
     Returns (best, tried, last error): best = (positions off the flank, SynthesisResult, free set name) or None.
     """
-    from .pinion_fillet import fit_pinion_edge_radius
+    from .pinion_fillet import fit_pinion_edge_radius, lower_root
 
     hint = pin.source.startswith("basic settings solved")   # start from the pinion's solved basic settings
     # the design file's set of solved settings first; for the default synthesis the other sets after it
@@ -357,8 +361,8 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
         if not default:
             return (0, res, free), tried, last
         off = bearing_off_flank(blank, res.pinion_flank, gear.flank)
-        if refit and 0 < off < _CHECK_POSITIONS:   # an edge contact: a smaller fillet, kept if it helps
-            res2 = fit_pinion_edge_radius(blank, res)
+        if refit and 0 < off < _CHECK_POSITIONS:   # an edge contact: the root back on the root cone, a smaller
+            res2 = fit_pinion_edge_radius(blank, lower_root(blank, res))    # fillet; kept if it helps
             off2 = off if res2 is res else bearing_off_flank(blank, res2.pinion_flank, gear.flank)
             if off2 < off:
                 res, off = res2, off2

@@ -17,6 +17,16 @@ only made smaller.
 The gear's top in the pinion's axial section: both members share the pitch generatrix, so at the cone distance R the
 gear's face cone lies c(R) = h_f1(R) - h_a2(R) above the pinion's root cone, with h_f1(R) = h_fm1 + (R - R_m)
 tan(theta_f1) and h_a2(R) = h_am2 + (R - R_m) tan(theta_a2) (ISO 23509 dedendum and addendum angles).
+
+The edge radius alone does not always suffice: a blade with a sharp corner still generates a trochoidal fillet up to
+its junction, and where the synthesis lifted the root, even that lies above the gear's top (11/17 at beta 21.5 deg:
+junction 0.79-0.84 mm above the root cone with a sharp blade, the gear's top at 0.41 mm). :func:`lower_root` then
+puts the synthesized pinion's root back on the root cone without changing its blade surface: the blade is extended
+by Delta (axially) beyond its old tip and the work moved by Delta toward the cutter along the cradle axis (sliding
+base + Delta). The cradle roll is a rotation about that axis, so it commutes with the translation: the generated
+blade surface is the same (the old blade parameter u is u + Delta / cos(alpha) of the new cutter), and the root, the
+envelope of the tip plane, moves Delta deeper. The new blade point: radius R_h - s Delta tan(alpha) (s = +1 outer,
+-1 inner blade), width W - 2 Delta tan(alpha).
 """
 
 from __future__ import annotations
@@ -28,7 +38,7 @@ import numpy as np
 
 from ..conventions import Member
 
-__all__ = ["junction_height", "gear_top_height", "fit_pinion_edge_radius", "JUNCTION_STATIONS"]
+__all__ = ["junction_height", "gear_top_height", "fit_pinion_edge_radius", "lower_root", "JUNCTION_STATIONS"]
 
 #: face stations (toe to heel, both included) at which the junction line is held below the gear's top
 JUNCTION_STATIONS = 7
@@ -74,6 +84,51 @@ def gear_top_height(blank, R) -> np.ndarray:
     hf1 = float(blank.hfm1) + (R - rm) * math.tan(float(blank.delta1) - float(blank.delta_f1))
     ha2 = float(blank.ham2) + (R - rm) * math.tan(float(blank.delta_a2) - float(blank.delta2))
     return hf1 - ha2
+
+
+def lower_root(blank, res):
+    """The synthesis result ``res`` with its pinion root put on the blank's root cone at the face station where it
+    lies lowest (toe, mean or heel; nowhere below it), blade surface unchanged (module docstring); ``res`` itself
+    when the root lies within ``CHECK_ROOT_MM`` of the root cone there, below it, or the cutter cannot be extended
+    (the point width would vanish).
+
+    Parameters
+    ----------
+    blank : BevelBlank
+    res : SynthesisResult
+
+    Returns
+    -------
+    SynthesisResult
+    """
+    from ..errors import GeometryError
+    from ..generation.basic_settings_solve import root_deviation
+    from ..generation.flank import generate_flank
+    from ..machine.default_cutter import EDGE_RADIUS_FILL
+    from .facemilled import CHECK_ROOT_MM
+
+    cutter, settings = res.pinion_cutter, res.pinion_settings
+    try:
+        dev = [d for d in root_deviation(res.pinion_flank) if d is not None]
+    except GeometryError:
+        return res
+    if not dev or min(dev) <= CHECK_ROOT_MM:
+        return res
+    delta = min(dev)      # the root moves by delta exactly (the envelope of the tip plane, moved along its normal)
+    ta = math.tan(cutter.blade_angle)
+    width = cutter.point_width - 2.0 * delta * ta
+    if width <= 0.0:
+        return res
+    rho_max = 0.5 * width * math.cos(cutter.blade_angle) / (1.0 - math.sin(cutter.blade_angle))   # HeadCutter's limit
+    new = dataclasses.replace(cutter, point_radius=cutter.point_radius - cutter.sign * delta * ta, point_width=width,
+                              edge_radius=min(cutter.edge_radius, EDGE_RADIUS_FILL * rho_max))
+    st = dataclasses.replace(settings, sliding_base=settings.sliding_base + delta)
+    try:
+        flank = generate_flank(new, st, blank, Member.PINION, res.pinion_flank.side)
+        flank.mean_point()
+    except GeometryError:
+        return res
+    return dataclasses.replace(res, pinion_cutter=new, pinion_settings=st, pinion_flank=flank)
 
 
 def fit_pinion_edge_radius(blank, res, n_face: int = JUNCTION_STATIONS):
