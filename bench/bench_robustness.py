@@ -10,7 +10,8 @@ the time per design, and every failure with its error message (a failure must be
 traceback or NaN); of the developed ones, how many have all four flanks' mean-point angles within 0.05 deg of the
 design and a bearing inside both flanks (no edge contact).
 
-Usage: ``python bench/bench_robustness.py [n_designs] [seed]`` (default 40 designs, seed 1).
+Usage: ``python bench/bench_robustness.py [n_designs] [seed] [part] [parts]`` (default 40 designs, seed 1); with
+``parts`` > 1 only the designs i with i % parts == part are run (the same sample, split over processes).
 """
 
 from __future__ import annotations
@@ -88,13 +89,17 @@ def develop(text, beta):
     return None, (dev, edge)
 
 
-def main(n=40, seed=1):
+def main(n=40, seed=1, part=0, parts=1):
     rng = np.random.default_rng(seed)
     ok, reasons, crashes = 0, collections.Counter(), []
     n_angles = n_inside = 0
     t0, c0 = time.perf_counter(), time.process_time()
-    for _ in range(n):
+    n_run = 0
+    for i in range(n):
         text, label = sample(rng)
+        if i % parts != part:
+            continue
+        n_run += 1
         t1 = time.perf_counter()
         beta = float(text.split("mean_spiral_angle = ")[1].split()[0])     # the design file's value
         checks = None
@@ -117,6 +122,7 @@ def main(n=40, seed=1):
             reasons[why.split(":")[0] + ": " + why.split(":", 1)[-1][:110]] += 1
             print(f"  not developed: {label}: {why[:200]}")
     dt, dc = time.perf_counter() - t0, time.process_time() - c0
+    n = n_run
     print(f"developed {ok} of {n} designs ({100.0 * ok / n:.0f} %), {dt / n:.2f} s per design (wall), "
           f"{dc / n:.2f} s CPU per design")
     print(f"  of these: mean-point angles of all four flanks within 0.05 deg of the design: {n_angles}; bearing "

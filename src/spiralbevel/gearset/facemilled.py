@@ -202,7 +202,7 @@ def synthesize_sides(spec, blank, setups, sy=None):
     from .problems import restated
 
     try:
-        return _synthesize_sides(spec.synthesis if sy is None else sy, blank, setups, syn)
+        return _synthesize_sides(spec.synthesis if sy is None else sy, blank, setups, syn, _derived_edge_radius(spec))
     except DesignError as err:
         raise restated(err, SYNTHESIS_PATHS, default="synthesis") from err
 
@@ -214,8 +214,16 @@ SYNTHESIS_PATHS = {
 }
 
 
-def _synthesize_sides(sy, blank, setups, syn):
+def _derived_edge_radius(spec) -> dict:
+    """{pinion side: True when its cutter's edge radius is derived} (neither ``face_milling.edge_radius`` nor the
+    side's cutter given): only a derived edge radius of a synthesized pinion is refitted (gearset/pinion_fillet.py)."""
+    fm = spec.face_milling
+    return {s: fm.edge_radius is None and getattr(fm, f"pinion_{s.value}").cutter is None for s in SIDES}
+
+
+def _synthesize_sides(sy, blank, setups, syn, refit=None):
     new, results = {}, {}
+    refit = refit or {}
     for name in sy.sides:
         s1, s2 = PAIR_SIDES[name]
         gear = setups[(Member.GEAR, s2)]
@@ -240,7 +248,8 @@ def _synthesize_sides(sy, blank, setups, syn):
         levels = (sy.te_magnitude,) + (tuple(sy.te_magnitude * f for f in DEFAULT_TE_FALLBACK) if default else ())
         for k_level, te in enumerate(levels):
             best, tried, last = _candidates(sy, blank, gear, pin, s1, te, syn, default,
-                                            DEFAULT_MAX_SYNTHESES if k_level == 0 else DEFAULT_FALLBACK_SYNTHESES)
+                                            DEFAULT_MAX_SYNTHESES if k_level == 0 else DEFAULT_FALLBACK_SYNTHESES,
+                                            refit.get(s1, False))
             # a lower level only when this one reached the geometry but no flank covered the face and meshed
             if best is None or not default or best[0] < _CHECK_POSITIONS:
                 break
@@ -265,8 +274,15 @@ def _synthesize_sides(sy, blank, setups, syn):
                                    "(with synthesis.path_direction, synthesis.semi_major_axis), or change "
                                    "gear_set.cutter_radius or gear_set.mean_spiral_angle", tried, float("inf"), None)
         _, res, free = best
+        source = f"local synthesis ({name} side, free = {free})"
+        if res.pinion_cutter.point_width < pin.cutter.point_width - 1e-9:   # gearset/pinion_fillet.lower_root
+            source += (f"; root lowered onto the root cone: blade extended to a point width of "
+                       f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
+        if res.pinion_cutter.edge_radius < pin.cutter.edge_radius:
+            source += (f"; edge radius {res.pinion_cutter.edge_radius:.3f} mm refitted to keep the generated fillet "
+                       f"below the gear's top (derived {pin.cutter.edge_radius:.3f} mm)")
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
-                                              res.pinion_flank, f"local synthesis ({name} side, free = {free})")
+                                              res.pinion_flank, source)
         results[name] = res
     return new, results
 
@@ -289,14 +305,22 @@ def _require_near_branch(res, pin):
                                iterations=res.iterations, residual=res.residual, last=None)
 
 
-def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses):
+def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit=False):
     """The local syntheses of one pinion side at the TE level ``te`` (arcsec): the design file's path direction, or
     for the default synthesis the first of ``DEFAULT_CANDIDATES`` whose pair keeps the bearing inside both flanks
     over the whole mesh cycle (TCA: real contact, no edge, at every position); if none does, the one with the fewest
     positions off the flank. At most ``max_syntheses`` syntheses (failed ones included) for the default.
 
+    With ``refit``, a default candidate whose bearing leaves the flanks at some position gets its pinion's root put
+    back on the root cone (:func:`~spiralbevel.gearset.pinion_fillet.lower_root`) and its derived edge radius
+    refitted to keep the generated fillet below the gear's top
+    (:func:`~spiralbevel.gearset.pinion_fillet.fit_pinion_edge_radius`), both with the blade surface unchanged;
+    kept when the TCA then has fewer positions off the flanks.
+
     Returns (best, tried, last error): best = (positions off the flank, SynthesisResult, free set name) or None.
     """
+    from .pinion_fillet import fit_pinion_edge_radius, lower_root
+
     hint = pin.source.startswith("basic settings solved")   # start from the pinion's solved basic settings
     # the design file's set of solved settings first; for the default synthesis the other sets after it
     names = [sy.free] + ([f for f in _FREE if f != sy.free] if default else [])
@@ -337,6 +361,11 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses):
         if not default:
             return (0, res, free), tried, last
         off = bearing_off_flank(blank, res.pinion_flank, gear.flank)
+        if refit and 0 < off < _CHECK_POSITIONS:   # an edge contact: the root back on the root cone, a smaller
+            res2 = fit_pinion_edge_radius(blank, lower_root(blank, res))    # fillet; kept if it helps
+            off2 = off if res2 is res else bearing_off_flank(blank, res2.pinion_flank, gear.flank)
+            if off2 < off:
+                res, off = res2, off2
         # M off the pitch point moves the pinion's mean-point angles off the design (by a few 0.01 deg): such a
         # candidate is taken only when it keeps the bearing inside the flanks and the angles within the check
         if frac and off == 0 and not _angles_hit(blank, res.pinion_flank):

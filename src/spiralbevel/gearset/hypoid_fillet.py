@@ -30,7 +30,7 @@ from ..conventions import Member, Side
 from ..errors import GeometryError
 from ..machine.default_cutter import EDGE_RADIUS_FILL
 
-__all__ = ["generated_root_slot", "fit_edge_radii", "SLOT_FACE_STATIONS"]
+__all__ = ["generated_root_slot", "fit_edge_radii", "largest_fitting_radius", "SLOT_FACE_STATIONS"]
 
 #: face stations at which the generated root slot is checked (toe and heel included)
 SLOT_FACE_STATIONS = 31
@@ -78,6 +78,26 @@ def generated_root_slot(blank, setups, member, rho=None, n_face: int = SLOT_FACE
     return root_slot_width(g[Side.CONVEX].points, cc, z)
 
 
+def largest_fitting_radius(room, rho0: float) -> float | None:
+    """The edge radius (mm) in (rho0/1000, rho0) at which ``room`` (a function of the edge radius, mm, > 0 where the
+    fillet fits) changes sign, by Brent's method to 1e-4 rho0; ``None`` when even rho0/1000 does not fit.
+
+    Parameters
+    ----------
+    room : callable float -> float
+    rho0 : float, mm
+        The derived edge radius, at which ``room`` is <= 0.
+
+    Returns
+    -------
+    float, mm, or None
+    """
+    lo = 1e-3 * rho0
+    if room(lo) <= 0.0:
+        return None
+    return float(brentq(room, lo, rho0, xtol=1e-4 * rho0))
+
+
 def fit_edge_radii(spec, blank, setups, synthesis=None):
     """Refit the derived edge radius of each member whose generated root slot does not hold it (module docstring).
 
@@ -108,17 +128,16 @@ def fit_edge_radii(spec, blank, setups, synthesis=None):
         rho0 = min(setups[(m, s)].cutter.edge_radius for s in SIDES)
         if generated_root_slot(blank, setups, m).min() > 0.0:
             continue
-        lo = 1e-3 * rho0
 
         def f(r, m=m):
             return float(generated_root_slot(blank, setups, m, r).min())
 
         try:
-            if f(lo) <= 0.0:
-                continue                                # even a sharp blade does not fit: the CAD step says so
-            rho_lim = brentq(f, lo, rho0, xtol=1e-4 * rho0)
+            rho_lim = largest_fitting_radius(f, rho0)
         except GeometryError:
             continue
+        if rho_lim is None:
+            continue                                    # even a sharp blade does not fit: the CAD step says so
         rho = EDGE_RADIUS_FILL * rho_lim
         for s, (cutter, flank) in _flanks(blank, setups, m, rho).items():
             st = setups[(m, s)]

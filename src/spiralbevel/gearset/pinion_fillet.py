@@ -1,0 +1,174 @@
+"""Edge radius of a synthesized pinion's cutter refitted so that its generated fillet stays below the gear's top.
+
+The local synthesis moves the pinion's machine settings off the blank's basic ones (blank offset, machine centre to
+back, ratio of roll), and with them the generated root: on a 36/61 design at a 1.1 deg spiral angle the synthesized
+coast pinion's root lies 0.81 mm above the root cone at the heel. The fillet/blade junction of the generated flank
+lies about rho (1 - sin alpha) above the generated root (edge radius rho, blade angle alpha: 1.1 mm for the derived
+1.669 mm), so 1.9 mm above the root cone, while the gear's top reaches only the clearance c (1.16 mm) above it: the
+gear's tooth meets the pinion's fillet, and the TCA shows an edge contact.
+
+The blade surface does not depend on the edge radius (the blade is defined by its virtual sharp point:
+``HeadCutter``), so the edge radius is refitted after the synthesis without changing the blade, the settings or the
+mean-point fit: the largest edge radius at which the junction line lies at or below the gear's top at every face
+station, times ``EDGE_RADIUS_FILL`` (the derived cutters' margin), the same search as the hypoid slot fit
+(:func:`~spiralbevel.gearset.hypoid_fillet.largest_fitting_radius`). Only a derived edge radius is refitted, and
+only made smaller.
+
+The gear's top in the pinion's axial section: both members share the pitch generatrix, so at the cone distance R the
+gear's face cone lies c(R) = h_f1(R) - h_a2(R) above the pinion's root cone, with h_f1(R) = h_fm1 + (R - R_m)
+tan(theta_f1) and h_a2(R) = h_am2 + (R - R_m) tan(theta_a2) (ISO 23509 dedendum and addendum angles).
+
+The edge radius alone does not always suffice: a blade with a sharp corner still generates a trochoidal fillet up to
+its junction, and where the synthesis lifted the root, even that lies above the gear's top (11/17 at beta 21.5 deg:
+junction 0.79-0.84 mm above the root cone with a sharp blade, the gear's top at 0.41 mm). :func:`lower_root` then
+puts the synthesized pinion's root back on the root cone without changing its blade surface: the blade is extended
+by Delta (axially) beyond its old tip and the work moved by Delta toward the cutter along the cradle axis (sliding
+base + Delta). The cradle roll is a rotation about that axis, so it commutes with the translation: the generated
+blade surface is the same (the old blade parameter u is u + Delta / cos(alpha) of the new cutter), and the root, the
+envelope of the tip plane, moves Delta deeper. The new blade point: radius R_h - s Delta tan(alpha) (s = +1 outer,
+-1 inner blade), width W - 2 Delta tan(alpha).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..conventions import Member
+
+__all__ = ["junction_height", "gear_top_height", "fit_pinion_edge_radius", "lower_root", "JUNCTION_STATIONS"]
+
+#: face stations (toe to heel, both included) at which the junction line is held below the gear's top
+JUNCTION_STATIONS = 7
+
+
+def junction_height(flank, n_face: int = JUNCTION_STATIONS) -> np.ndarray:
+    """Height (mm) of the generated fillet/blade junction line (u = u_j) above the blank's root cone at ``n_face``
+    face stations evenly in cone distance from toe to heel.
+
+    Parameters
+    ----------
+    flank : ToothFlank
+    n_face : int
+
+    Returns
+    -------
+    (n_face,) float, mm
+    """
+    ol, gen = flank.outline, flank.generator
+    R = np.linspace(ol.Ri, ol.Re, n_face)
+    mp = flank.mean_point()
+    xj = flank._locator.junction(R, (mp.theta + np.pi - gen.mp["q"] + mp.psi_c, mp.psi_c))   # as ToothFlank.grid
+    p = gen.evaluate_at(np.full(n_face, gen.cp["u_j"]), xj[:, 1], xj[:, 2], curvature=False).points
+    Rx, h = ol.Rh(p[:, 2], np.hypot(p[:, 0], p[:, 1]))
+    return h - ol.h_root(Rx)
+
+
+def gear_top_height(blank, R) -> np.ndarray:
+    """Height (mm) of the gear's face cone above the pinion's root cone at cone distances ``R`` (mm), (module
+    docstring): the clearance, growing or shrinking along the face with theta_f1 - theta_a2.
+
+    Parameters
+    ----------
+    blank : BevelBlank
+    R : (n,) float, mm
+
+    Returns
+    -------
+    (n,) float, mm
+    """
+    R = np.asarray(R, float)
+    rm = float(blank.Rm)
+    hf1 = float(blank.hfm1) + (R - rm) * math.tan(float(blank.delta1) - float(blank.delta_f1))
+    ha2 = float(blank.ham2) + (R - rm) * math.tan(float(blank.delta_a2) - float(blank.delta2))
+    return hf1 - ha2
+
+
+def lower_root(blank, res):
+    """The synthesis result ``res`` with its pinion root put on the blank's root cone at the face station where it
+    lies lowest (toe, mean or heel; nowhere below it), blade surface unchanged (module docstring); ``res`` itself
+    when the root lies within ``CHECK_ROOT_MM`` of the root cone there, below it, or the cutter cannot be extended
+    (the point width would vanish).
+
+    Parameters
+    ----------
+    blank : BevelBlank
+    res : SynthesisResult
+
+    Returns
+    -------
+    SynthesisResult
+    """
+    from ..errors import GeometryError
+    from ..generation.basic_settings_solve import root_deviation
+    from ..generation.flank import generate_flank
+    from ..machine.default_cutter import EDGE_RADIUS_FILL
+    from .facemilled import CHECK_ROOT_MM
+
+    cutter, settings = res.pinion_cutter, res.pinion_settings
+    try:
+        dev = [d for d in root_deviation(res.pinion_flank) if d is not None]
+    except GeometryError:
+        return res
+    if not dev or min(dev) <= CHECK_ROOT_MM:
+        return res
+    delta = min(dev)      # the root moves by delta exactly (the envelope of the tip plane, moved along its normal)
+    ta = math.tan(cutter.blade_angle)
+    width = cutter.point_width - 2.0 * delta * ta
+    if width <= 0.0:
+        return res
+    rho_max = 0.5 * width * math.cos(cutter.blade_angle) / (1.0 - math.sin(cutter.blade_angle))   # HeadCutter's limit
+    new = dataclasses.replace(cutter, point_radius=cutter.point_radius - cutter.sign * delta * ta, point_width=width,
+                              edge_radius=min(cutter.edge_radius, EDGE_RADIUS_FILL * rho_max))
+    st = dataclasses.replace(settings, sliding_base=settings.sliding_base + delta)
+    try:
+        flank = generate_flank(new, st, blank, Member.PINION, res.pinion_flank.side)
+        flank.mean_point()
+    except GeometryError:
+        return res
+    return dataclasses.replace(res, pinion_cutter=new, pinion_settings=st, pinion_flank=flank)
+
+
+def fit_pinion_edge_radius(blank, res, n_face: int = JUNCTION_STATIONS):
+    """The synthesis result ``res`` with its pinion cutter's edge radius refitted (module docstring), or ``res``
+    itself when its fillet already stays below the gear's top or no edge radius fits (then the TCA shows the fillet
+    contact).
+
+    Parameters
+    ----------
+    blank : BevelBlank
+    res : SynthesisResult
+    n_face : int
+
+    Returns
+    -------
+    SynthesisResult
+    """
+    from ..errors import GeometryError
+    from ..generation.flank import generate_flank
+    from ..machine.default_cutter import EDGE_RADIUS_FILL
+    from .hypoid_fillet import largest_fitting_radius
+
+    cutter, settings, side = res.pinion_cutter, res.pinion_settings, res.pinion_flank.side
+    R = np.linspace(res.pinion_flank.outline.Ri, res.pinion_flank.outline.Re, n_face)
+    top = gear_top_height(blank, R)
+
+    def flank(r):
+        return generate_flank(dataclasses.replace(cutter, edge_radius=float(r)), settings, blank, Member.PINION, side)
+
+    def room(r):   # > 0: the junction lies below the gear's top at every station
+        return float(np.min(top - junction_height(flank(r), n_face)))
+
+    try:
+        if room(cutter.edge_radius) > 0.0:
+            return res
+        rho = largest_fitting_radius(room, cutter.edge_radius)
+    except GeometryError:
+        return res
+    if rho is None:
+        return res
+    rho *= EDGE_RADIUS_FILL
+    new = dataclasses.replace(cutter, edge_radius=rho)
+    return dataclasses.replace(res, pinion_cutter=new, pinion_flank=flank(rho))
