@@ -28,12 +28,16 @@ from .._core import tca_edge as _ke
 from .._core.jets import GENERATED
 from .contact_surface import surface_derivatives
 
-__all__ = ["solve_edge_contacts", "edge_stage"]
+__all__ = ["solve_edge_contacts", "edge_stage", "corner_split", "corner_index"]
 
 #: step of the forward difference of the curve tangent (surface parameters), and of the central difference of the
 #: margin gradient of surfaces without compiled margins
 _H_TAU = 1e-7
 _H_PARAM = 1e-6
+#: tolerance of the tangency equation where a margin gradient is a central difference (its round-off, about
+#: 1e-16 |g| / _H_PARAM, is 1e-9 of the gradient; the TE is stationary along the curve at the root, so an error of
+#: the tangency of 1e-9 moves the TE by its square)
+_TOL_TANGENCY_FD = 1e-9
 #: rank threshold of the Newton step (:func:`spiralbevel._core.tca_newton.step`)
 _RCOND = 1e-12
 
@@ -74,8 +78,9 @@ def _margin_jets(surface, q, e):
     return g[0], np.stack([(g[1] - g[2]) / (2 * h), (g[3] - g[4]) / (2 * h)], -1)
 
 
-def _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter):
-    """The edge Newton with the surfaces evaluated by numpy between compiled iterations; ``x`` updated in place."""
+def _newton_numpy(prob, c1, s1, x, member, edge, corner, tol, max_iter):
+    """The edge and corner Newton with the surfaces evaluated by numpy between compiled iterations; ``x`` updated in
+    place. ``corner (m, 4)``: (ma, ea, mb, eb) of a corner row (member 0), -1 elsewhere."""
     m = len(x)
     conv = np.zeros(m, bool)
     ndot = np.full(m, np.nan)
@@ -84,6 +89,7 @@ def _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter):
     pert = np.array([[0, 0], [h, 0], [0, h]], float)
     surfs = (prob.pinion, prob.gear)
     d, M2, _ = prob._const
+    tol_t = _ke.TOL_TANGENCY if all(_boundary(sf) is not None for sf in surfs) else _TOL_TANGENCY_FD
     for _ in range(max_iter + 1):
         a = np.flatnonzero(active)
         if not a.size:
@@ -91,6 +97,7 @@ def _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter):
         k = a.size
         SA, SB = np.empty((k, 3, 3, 6)), np.empty((k, 3, 6))
         gA, dgA = np.empty((k, 3)), np.empty((k, 3, 2))
+        gB, dgB = np.zeros(k), np.zeros((k, 2))
         for A in (0, 1):
             s = member[a] == A
             if not s.any():
@@ -101,19 +108,58 @@ def _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter):
                 SB[s] = _b.stack_state(*surface_derivatives(surfs[1 - A], x[a[s], 2 - 2 * A:4 - 2 * A]))
                 g, dg = _margin_jets(surfs[A], qa, np.repeat(edge[a[s]], 3))
             gA[s], dgA[s] = g.reshape(-1, 3), dg.reshape(-1, 3, 2)
+        ca = corner[a]
+        for col, g_, dg_ in ((0, gA[:, 0], dgA[:, 0]), (2, gB, dgB)):  # a corner: its two margins
+            for mm in (0, 1):
+                c = ca[:, col] == mm
+                if c.any():
+                    with np.errstate(all="ignore"):
+                        g_[c], dg_[c] = _margin_jets(surfs[mm], x[a[c], 2 * mm:2 * mm + 2], ca[c, col + 1])
+        cols = np.ascontiguousarray(np.where(ca[:, 0:1] >= 0, 2 * ca[:, 0::2], -1), np.int64)
         xa = np.ascontiguousarray(x[a])
         state, nd = np.empty(k, np.int64), np.empty(k)
         with np.errstate(all="ignore"):
-            _ke.edge_step_batch(SA, gA, dgA, SB, np.ascontiguousarray(member[a]), c1[a], s1[a], xa, d, M2, h, tol,
-                                _RCOND, state, nd)
+            _ke.edge_step_batch(SA, gA, dgA, SB, gB, dgB, np.ascontiguousarray(member[a]), cols, c1[a], s1[a], xa,
+                                d, M2, h, tol, tol_t, _RCOND, state, nd)
         x[a], ndot[a] = xa, nd
         conv[a[state == 1]] = True
         active[a[state != 0]] = False
     return conv, ndot
 
 
+def corner_split(prob, member, edge):
+    """Corner systems among ``(member (m,), edge (m,))``: member 0 with an edge index k1 + a K + b past the pinion's
+    k1 boundaries (K = k1 + k2 boundaries of both members, :func:`corner_index`) is the corner where boundary a meets
+    boundary b, both numbered over the pinion's boundaries then the gear's.
+
+    Returns
+    -------
+    corner : (m,) bool
+    ma, ea, mb, eb : (m,) int
+        Member (0 pinion, 1 gear) and boundary index of a and of b (0 where not a corner).
+    """
+    k1 = len(getattr(prob.pinion, "boundary_names", ()))
+    K = max(1, k1 + len(getattr(prob.gear, "boundary_names", ())))
+    member, edge = np.asarray(member), np.asarray(edge)
+    corner = (member == 0) & (edge >= k1)
+    c = np.where(corner, edge - k1, 0)
+    a, b = c // K, c % K
+    ma, mb = (a >= k1).astype(int), (b >= k1).astype(int)
+    return corner, ma, a - k1 * ma, mb, b - k1 * mb
+
+
+def corner_index(prob, a, b):
+    """The edge index (with member 0) of the corner where boundary ``a = (member, index)`` meets ``b``: two
+    boundaries of different members (their curves meet) or of the same member (its flank's vertex touches the
+    other flank)."""
+    k1 = len(prob.pinion.boundary_names)
+    K = k1 + len(prob.gear.boundary_names)
+    return k1 + (a[0] * k1 + a[1]) * K + b[0] * k1 + b[1]
+
+
 def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30):
-    """Newton solution of the edge-contact equations (module docstring) for a batch of systems.
+    """Newton solution of the edge-contact equations (module docstring) for a batch of systems, corner systems
+    (:mod:`spiralbevel._core.tca_corner`: two boundary curves meeting) among them.
 
     Parameters
     ----------
@@ -126,7 +172,8 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
     member : (m,) int
         0: a boundary curve of the pinion against the gear flank; 1: of the gear against the pinion flank.
     edge : (m,) int
-        Index into that member's ``boundary_names``.
+        Index into that member's ``boundary_names``; with member 0, an index :func:`corner_index` past the pinion's
+        boundaries is a corner (the pinion's boundary e1 meets the gear's boundary e2, :func:`corner_split`).
     tol : float, mm
         Tolerance on the point coincidence (the boundary equation to 1e-12, the tangency to 1e-11:
         :mod:`spiralbevel._core.tca_edge`).
@@ -147,15 +194,21 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
     if len(x) == 0:
         return x, np.zeros(0, bool), np.zeros(0)
     c1, s1 = np.cos(phi1_eff), np.sin(phi1_eff)
+    corner, ma, ea, mb, eb = corner_split(prob, member, edge)
     b1, b2 = _boundary(prob.pinion), _boundary(prob.gear)
-    if prob._jets is not None and b1 is not None and b2 is not None:
+    N = _ke.N_MARGINS
+    if (prob._jets is not None and b1 is not None and b2 is not None
+            and len(prob.pinion.boundary_names) == len(prob.gear.boundary_names) == N):
+        edge = np.ascontiguousarray(np.where(corner, ma * N + ea, edge), np.int64)
+        edge2 = np.ascontiguousarray(np.where(corner, mb * N + eb, -1), np.int64)
         (k1, p1), (k2, p2) = prob._jets
         d, M2, _ = prob._const
         conv, ndot, _ = _ke.edge_newton_jets(k1, p1, b1[0], b1[1], _shares(k1, p1, b1), k2, p2, b2[0], b2[1],
-                                             _shares(k2, p2, b2), c1, s1, x, member, edge, d, M2, _H_TAU, tol,
-                                             max_iter, _RCOND)
+                                             _shares(k2, p2, b2), c1, s1, x, member, edge, edge2, d, M2, _H_TAU,
+                                             tol, max_iter, _RCOND)
         return x, conv, ndot
-    conv, ndot = _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter)
+    cols = np.where(corner[:, None], np.stack([ma, ea, mb, eb], 1), -1)
+    conv, ndot = _newton_numpy(prob, c1, s1, x, member, np.where(corner, 0, edge), cols, tol, max_iter)
     return x, conv, ndot
 
 
@@ -224,33 +277,77 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     if not all(names):
         return x_edge, te_edge, label
 
-    def try_solve(ii, jj, mem, ee, x0):
+    def constraints(mem, ee):
+        """The boundaries (member, index) a system puts its points on: one for an edge, two for a corner."""
+        corner, ma, ea, mb, eb = corner_split(prob, mem, ee)
+        return [((int(ma[a]), int(ea[a])), (int(mb[a]), int(eb[a]))) if corner[a] else ((int(mem[a]), int(ee[a])),)
+                for a in range(len(mem))]
+
+    def try_solve(ii, jj, mem, ee, x0, depth=2):
+        """Solve the edge and corner systems (positions ii, pair indices jj, member, edge index) from x0 and keep
+        the valid solutions that lead their pair's previous one. With ``depth`` > 0, a solution whose point runs
+        past another boundary (the touched point beyond the mate's boundary, or the boundary point past the end of
+        its own segment) seeds the corner of its boundaries with that one, solved in a further round.
+        Returns which systems gave a new best contact of their pair."""
         if not len(ii):
             return np.zeros(0, bool)
         phi_eff = phi1[ii] + pairs[jj] * T1
         xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
-        ok = conv.copy()
+        cons = constraints(mem, ee)
         tolm = 1e-9
-        for m in (0, 1):
-            s = mem == m
-            if not s.any():
-                continue
-            gg = _all_margins(surfs[m], xs[s, 2 * m:2 * m + 2])
-            gg[np.arange(s.sum()), ee[s]] = np.inf  # the edge's own margin is 0 by construction
-            with np.errstate(invalid="ignore"):
-                ok[s] &= np.all(gg >= -tolm, axis=1)  # NaN (no surface) fails
-        ok &= np.where(mem == 0, surface_contains(prob.gear, xs[:, 2:4]), surface_contains(prob.pinion, xs[:, 0:2]))
+        gg = [_all_margins(surfs[m], xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
+        inside = [surface_contains(surfs[m], xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
+        ok = conv.copy()
+        for a, c in enumerate(cons):
+            for m in (0, 1):
+                own = [e for mm, e in c if mm == m]
+                if not own:  # a member with no point held on a boundary: the point lies on its real flank
+                    ok[a] &= inside[m][a]
+                    continue
+                g = gg[m][a].copy()
+                g[own] = np.inf  # the system's own margins are 0 by construction
+                with np.errstate(invalid="ignore"):
+                    ok[a] &= bool(np.all(g >= -tolm))  # NaN (no surface) fails
         with np.errstate(invalid="ignore"):
-            ok &= ndot < -0.5
             te = te_of(xs[:, 4], ii, jj)
-            ok &= np.abs(te) < np.pi / prob.z2
+            good = conv & (ndot < -0.5) & (np.abs(te) < np.pi / prob.z2)
+        ok &= good
         new = np.zeros(len(ii), bool)
         for a in np.flatnonzero(ok):
             i, j = int(ii[a]), int(jj[a])
             if not np.isfinite(te_edge[i, j]) or te[a] > te_edge[i, j]:
                 te_edge[i, j], x_edge[i, j] = te[a], xs[a]
-                label[(i, j)] = (("pinion", "gear")[mem[a]], names[mem[a]][ee[a]], int(mem[a]), int(ee[a]))
+                c = cons[a]
+                if len(c) == 2:
+                    ms = {m for m, _ in c}
+                    who = "pinion/gear" if len(ms) == 2 else ("pinion", "gear")[c[0][0]]
+                    label[(i, j)] = (who, f"{names[c[0][0]][c[0][1]]}/{names[c[1][0]][c[1][1]]} corner", 0,
+                                     int(ee[a]))
+                else:
+                    label[(i, j)] = (("pinion", "gear")[mem[a]], names[mem[a]][ee[a]], int(mem[a]), int(ee[a]))
                 new[a] = True
+        if depth > 0:
+            # a solution running past another boundary: the real teeth may first touch where its boundary meets
+            # that one (two boundary curves meeting, or a flank's vertex against the mate), started from it
+            I, E = [], []
+            for a in np.flatnonzero(good & ~ok):
+                c = cons[a]
+                for m in (0, 1):
+                    for f in np.flatnonzero(~(gg[m][a] >= 0)):
+                        if names[m][f] == "generated" or (m, int(f)) in c:
+                            continue
+                        if len(c) == 1:
+                            pair_ = (c[0], (m, int(f)))
+                        else:  # a corner whose point of member m runs past the end of its boundary: that vertex
+                            own = [b for b in c if b[0] == m]
+                            if len(own) != 1 or len(c) != 2 or c[0][0] == c[1][0]:
+                                continue
+                            pair_ = (own[0], (m, int(f)))
+                        pair_ = tuple(sorted(pair_))
+                        I.append(a), E.append(corner_index(prob, *pair_))
+            if I:
+                I = np.array(I)
+                new[I] |= try_solve(ii[I], jj[I], np.zeros(len(I), int), np.array(E), xs[I], depth - 1)
         return new
 
     # 1. pairs whose surface contact lies beyond a boundary: the boundaries crossed there on either member, and the
@@ -321,6 +418,12 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         """Pair j's edge contact at position i leads the surface contacts of the other pairs there."""
         return te_edge[i, j] >= best_other[i, j]
 
+    def systems(m, e):
+        """The systems tried at a neighbour of a contact on boundary e of member m: that one, and from a corner its
+        two boundaries as edges too (past the corner one of the boundary curves runs against the mate's flank)."""
+        c = constraints(np.array([m]), np.array([e]))[0]
+        return [(m, e)] + ([b for b in c if names[b[0]][b[1]] != "generated"] if len(c) == 2 else [])
+
     front = {key for key in label if leads(*key)}
     while front:
         cand = {}
@@ -331,14 +434,14 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
                 if 0 <= k < n and not phys[k, j] and (k, j) not in label and (k, j) not in cand:
                     x0 = x_edge[i, j].copy()
                     x0[4] -= prob.ratio * (phi1[k] - phi1[i])
-                    cand[(k, j)] = (m, e, x0)
+                    cand[(k, j)] = (systems(m, e), x0)
         if not cand:
             break
-        keys = list(cand)
-        I = np.array([k[0] for k in keys])
-        Jp = np.array([k[1] for k in keys])
-        M = np.array([cand[k][0] for k in keys])
-        E = np.array([cand[k][1] for k in keys])
-        new = try_solve(I, Jp, M, E, np.array([cand[k][2] for k in keys]))
+        keys = [(k, me) for k in cand for me in cand[k][0]]
+        I = np.array([q[0][0] for q in keys])
+        Jp = np.array([q[0][1] for q in keys])
+        M = np.array([q[1][0] for q in keys])
+        E = np.array([q[1][1] for q in keys])
+        new = try_solve(I, Jp, M, E, np.array([cand[q[0]][1] for q in keys]))
         front = {(int(I[a]), int(Jp[a])) for a in np.flatnonzero(new) if leads(int(I[a]), int(Jp[a]))}
     return x_edge, te_edge, label
