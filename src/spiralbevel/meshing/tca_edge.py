@@ -329,8 +329,14 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         if depth > 0:
             # a solution running past another boundary: the real teeth may first touch where its boundary meets
             # that one (two boundary curves meeting, or a flank's vertex against the mate), started from it
+            # A corner is a point of an edge solution's boundary curve, met by the mate at a TE no larger than the
+            # curve's stationary maximum: only edge solutions that could still lead their pair's other contacts seed
+            # one (a corner bounds no vertex on its curve: corners seed theirs)
+            with np.errstate(invalid="ignore"):
+                bound = np.fmax(best_other[ii, jj] - te_tie, te_edge[ii, jj])
+                lead = ~(te <= bound) | np.array([len(c) == 2 for c in cons])
             I, E = [], []
-            for a in np.flatnonzero(good & ~ok):
+            for a in np.flatnonzero(good & ~ok & lead):
                 c = cons[a]
                 for m in (0, 1):
                     for f in np.flatnonzero(~(gg[m][a] >= 0)):
