@@ -11,9 +11,9 @@ with both margins of that member. Unknowns x = (q1, q2, phi2) as in the edge con
     F[4]   = g_b(q_mb)                            margin b of member mb: on boundary b
 
 (no tangency: two curves in space meet at one gear rotation, a vertex touches a flank at one, and there the TE is
-not stationary; the first touch of the teeth is the largest TE over all contacts, as for edges). The Jacobian is analytic: rows 0-2 from the surface
-jets (:func:`spiralbevel._core.tca_newton.assemble`), rows 3-4 the analytic margin gradients of
-:func:`spiralbevel._core.tca_edge.margins`.
+not stationary; the first touch of the teeth is the largest TE over all contacts, as for edges). The Jacobian is
+analytic: rows 0-2 from the surface jets (:func:`spiralbevel._core.tca_newton.assemble`), rows 3-4 the analytic
+margin gradients of :func:`spiralbevel._core.tca_edge.margins`.
 """
 
 from __future__ import annotations
