@@ -121,18 +121,23 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         cons = constraints(mem, ee)
         tolm = 1e-9
         gg = [_all_margins(surfs[m], xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
-        inside = [surface_contains(surfs[m], xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
         ok = conv.copy()
-        for a, c in enumerate(cons):
-            for m in (0, 1):
-                own = [e for mm, e in c if mm == m]
-                if not own:  # a member with no point held on a boundary: the point lies on its real flank
-                    ok[a] &= inside[m][a]
-                    continue
-                g = gg[m][a].copy()
-                g[own] = np.inf  # the system's own margins are 0 by construction
-                with np.errstate(invalid="ignore"):
-                    ok[a] &= bool(np.all(g >= -tolm))  # NaN (no surface) fails
+        # held[a, m, e]: system a holds its point of member m on boundary e (that margin is 0 by construction)
+        corner, ma, ea, mb, eb = corner_split(prob, mem, ee)
+        held = [np.zeros(g.shape, bool) for g in gg]
+        r = np.arange(len(ii))
+        for m in (0, 1):
+            s_ = ~corner & (mem == m)
+            held[m][r[s_], ee[s_]] = True
+            for mc, ec in ((ma, ea), (mb, eb)):
+                s_ = corner & (mc == m)
+                held[m][r[s_], ec[s_]] = True
+        for m in (0, 1):
+            own = held[m].any(axis=1)
+            with np.errstate(invalid="ignore"):
+                on_rest = np.all((gg[m] >= -tolm) | held[m], axis=1)  # NaN (no surface) fails
+            # a member with no point held on a boundary: the point lies on its real flank
+            ok &= np.where(own, on_rest, surface_contains(surfs[m], xs[:, 2 * m:2 * m + 2]))
         with np.errstate(invalid="ignore"):
             te = te_of(xs[:, 4], ii, jj)
             good = conv & (ndot < -0.5) & (np.abs(te) < np.pi / prob.z2)
