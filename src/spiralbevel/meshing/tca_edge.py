@@ -118,12 +118,18 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
             return np.zeros(0, bool)
         phi_eff = phi1[ii] + pairs[jj] * T1
         xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
-        cons = constraints(mem, ee)
         tolm = 1e-9
         gg = [_all_margins(surfs[m], xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
         ok = conv.copy()
         # held[a, m, e]: system a holds its point of member m on boundary e (that margin is 0 by construction)
         corner, ma, ea, mb, eb = corner_split(prob, mem, ee)
+
+        def cons(a):
+            """The boundaries (member, index) system a holds its points on."""
+            if corner[a]:
+                return (int(ma[a]), int(ea[a])), (int(mb[a]), int(eb[a]))
+            return ((int(mem[a]), int(ee[a])),)
+
         held = [np.zeros(g.shape, bool) for g in gg]
         r = np.arange(len(ii))
         for m in (0, 1):
@@ -147,7 +153,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
             i, j = int(ii[a]), int(jj[a])
             if not np.isfinite(te_edge[i, j]) or te[a] > te_edge[i, j]:
                 te_edge[i, j], x_edge[i, j] = te[a], xs[a]
-                c = cons[a]
+                c = cons(a)
                 if len(c) == 2:
                     ms = {m for m, _ in c}
                     who = "pinion/gear" if len(ms) == 2 else ("pinion", "gear")[c[0][0]]
@@ -164,10 +170,10 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
             # one (a corner bounds no vertex on its curve: corners seed theirs)
             with np.errstate(invalid="ignore"):
                 bound = np.fmax(best_other[ii, jj] - te_tie, te_edge[ii, jj])
-                lead = ~(te <= bound) | np.array([len(c) == 2 for c in cons])
+                lead = ~(te <= bound) | corner
             I, E = [], []
             for a in np.flatnonzero(good & ~ok & lead):
-                c = cons[a]
+                c = cons(a)
                 for m in (0, 1):
                     for f in np.flatnonzero(~(gg[m][a] >= 0)):
                         if names[m][f] == "generated" or (m, int(f)) in c:
