@@ -4,10 +4,10 @@ spiralbevel.meshing.formate_surface) against the brute-force oracle (tests/meshi
 The pinion is the hypoid local synthesis against the Formate wheel with the ellipse of a generated gear (path
 direction -20 deg, 8 arcsec design TE). The pair interferes: away from the mean point the next tooth pair touches
 hundreds of arcsec ahead, first on the pinion's fillet junction, then at the corner where that boundary crosses the
-wheel's heel edge, then on the wheel's heel edge. TCA finds the surface contacts and the fillet-junction edge contact
-(the oracle agrees there); it does not solve corner contacts (two boundary curves meeting), loses the contact at the
-corner and reports the trailing pair from there on: 350-709 arcsec short of the oracle at the last four sampled
-positions. That is a known limitation of the edge stage (meshing/tca_edge.py), pinned by the strict xfail below.
+wheel's heel edge, then on the wheel's heel edge. TCA finds the surface contacts, the fillet-junction edge contact,
+the corner contact (two boundary curves meeting) and the heel-edge contact past it; the oracle agrees at every
+sampled position (without corner contacts TCA lost the contact at the corner and reported the trailing pair, 350-709
+arcsec short of the oracle).
 """
 
 import math
@@ -107,10 +107,9 @@ def test_formate_pair_tca_matches_brute_force_up_to_the_corner(formate_pair):
     assert any(e[2:] == ("pinion", "fillet") for e in res.edges)
 
 
-@pytest.mark.xfail(strict=True, reason="the TCA edge stage does not solve corner contacts (a pinion boundary crossing "
-                   "a gear boundary): past the fillet/heel corner it reports the trailing pair, 350-709 arcsec short "
-                   "of the oracle")
 def test_formate_pair_tca_matches_brute_force_past_the_corner(formate_pair):
+    """Past the fillet junction: the corner where the pinion's fillet junction meets the wheel's heel edge, then
+    the heel edge against the pinion flank (both reported as edge contacts)."""
     c1, c2, kin, res = formate_pair
     idx = np.arange(14, len(res.phi1), 2)
     dev, o = _deviation(formate_pair, idx)
@@ -128,3 +127,5 @@ def test_formate_pair_tca_matches_brute_force_past_the_corner(formate_pair):
         p2_eff = res.phi2[i] - 2 * np.pi * k / kin.z2
         q, p2m, ok = o._meet(0, r1[None], phi_eff, np.array([p2_eff]), res.params2[i, j][None])
         assert ok[0] and abs(p2m[0] - p2_eff) / ARCSEC < 1e-6
+    kinds = {e[2:] for e in res.edges}
+    assert ("pinion/gear", "fillet/heel corner") in kinds and ("gear", "heel") in kinds, kinds

@@ -172,11 +172,16 @@ def test_edge_newton_matches_per_point_scipy(case):
 
 
 def test_edge_contacts_reported_on_their_edge(case):
-    """Every edge contact's point lies on its named boundary (compiled margin 0 to 1e-12) with opposed normals."""
+    """Every edge contact's point lies on its named boundary (compiled margin 0 to 1e-12); a corner's
+    ("pinion/gear", "heel/top corner": the pinion's heel meets the gear's top; "pinion", "heel/fillet corner": the
+    pinion flank's vertex) on both."""
     _, c1, c2, _, res = case
     for i, k, m, e in res.edges:
         j = list(res.pairs).index(k)
         assert res.status_pairs[i, j] == ContactStatus.EDGE
-        surf, q = (c1, res.params1[i, j]) if m == "pinion" else (c2, res.params2[i, j])
-        g = _margins(surf, q[None])[0]
-        assert abs(g[list(surf.boundary_names).index(e)]) < 1e-12
+        mems = m.split("/")
+        bnds = e.removesuffix(" corner").split("/")
+        for mm, b in zip(mems * 2 if len(mems) == 1 else mems, bnds):
+            surf, q = (c1, res.params1[i, j]) if mm == "pinion" else (c2, res.params2[i, j])
+            g = _margins(surf, q[None])[0]
+            assert abs(g[list(surf.boundary_names).index(b)]) < 1e-12

@@ -9,7 +9,8 @@ equations
     F[4]   = n_B . t_A                            t_A = R_A tau / |tau|, tau = r_A,q0 g_q1 - r_A,q1 g_q0
 
 (t_A the unit tangent of the boundary curve, n_B the fixed-frame unit normal of B: tangency of the curve to B, i.e.
-the gear rotation is stationary along the curve). The Jacobian is analytic from the first-order surface jets
+the gear rotation is stationary along the curve); the same batched Newton solves corner systems (two boundary curves
+meeting, :mod:`spiralbevel._core.tca_corner`). The Jacobian is analytic from the first-order surface jets
 (:mod:`spiralbevel._core.jets`) and the analytic margin gradients of :func:`margins`, except the q_A-columns of the
 tangency row, which need second derivatives of r_A and g: there d(tau)/dq_A is a forward difference of the analytic
 tau at q_A + h e_j (the residual stays exact; the Jacobian only steers Newton, and an error of order h in it leaves the
@@ -35,6 +36,7 @@ import numpy as np
 from .generation_blade_jet import blade_jet_u
 from .jets import surface_jet
 from .jit import kernel
+from .tca_corner import corner_assemble
 from .tca_newton import assemble, step
 
 __all__ = [
@@ -238,16 +240,17 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J, work):
 
 
 @kernel
-def edge_update(F, J, x, tol, rcond):
-    """One Newton update of an edge system in place; returns 1 converged (x unchanged), -1 failed (non-finite
-    system or step), 0 stepped."""
+def edge_update(F, J, x, tol, rcond, tol4):
+    """One Newton update of an edge system in place (``tol4``: the tolerance of F[4], :data:`TOL_TANGENCY` or, for
+    a corner system, :data:`TOL_MARGIN`); returns 1 converged (x unchanged), -1 failed (non-finite system or step),
+    0 stepped."""
     for v in F:
         if not math.isfinite(v):
             return -1
     for v in J.flat:
         if not math.isfinite(v):
             return -1
-    if (max(abs(F[0]), abs(F[1]), abs(F[2])) < tol and abs(F[3]) < TOL_MARGIN and abs(F[4]) < TOL_TANGENCY):
+    if (max(abs(F[0]), abs(F[1]), abs(F[2])) < tol and abs(F[3]) < TOL_MARGIN and abs(F[4]) < tol4):
         return 1
     dx = np.empty(5)
     step(J, F, rcond, dx)
@@ -282,10 +285,23 @@ def _jet_points(kind, prm, mkind, mprm, share, e, q0, q1, h, SA, gA, dgA, Sm, gm
 
 
 @kernel
-def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c1, s1, x, member, edge, d, M2, h,
-                     tol, max_iter, rcond):
-    """Batched edge Newton for two surfaces with compiled jets and margins, ``x (m, 5)`` updated in place
-    (``share1``, ``share2``: see :func:`_jet_points`).
+def _corner_point(kind, prm, mkind, mprm, share, q0, q1, S, Sm, gm, dgm):
+    """Jet ``S (3, 6)`` of a surface at (q0, q1) and all its margins ``gm (4,)`` with gradients ``dgm (4, 2)``."""
+    if share:
+        margins(mkind, mprm, q0, q1, S, gm, dgm)
+    else:
+        surface_jet(kind, prm, q0, q1, S)
+        margins(mkind, mprm, q0, q1, Sm, gm, dgm)
+
+
+@kernel
+def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c1, s1, x, member, edge, edge2, d, M2,
+                     h, tol, max_iter, rcond):
+    """Batched edge and corner Newton for two surfaces with compiled jets and margins, ``x (m, 5)`` updated in place
+    (``share1``, ``share2``: see :func:`_jet_points`). A row with ``edge2 >= 0`` is a corner system
+    (:mod:`spiralbevel._core.tca_corner`) of the boundaries ``edge`` and ``edge2``, each coded m N + e (boundary e
+    of member m, N = :data:`N_MARGINS`; ``member`` is then ignored); otherwise the edge system of boundary ``edge``
+    of ``member``.
 
     Returns
     -------
@@ -305,21 +321,33 @@ def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c
     Sm = np.empty((3, 6))
     gm = np.empty(N_MARGINS)
     dgm = np.empty((N_MARGINS, 2))
+    gm2 = np.empty((2, N_MARGINS))
+    dgm2 = np.empty((2, N_MARGINS, 2))
     F = np.empty(5)
     J = np.empty((5, 5))
     work = np.empty((13, 6))
     iters = 0
     for i in range(m):
         A = member[i]
+        corner = edge2[i] >= 0
         for it in range(max_iter + 1):
-            if A == 0:
-                _jet_points(kind1, p1, mk1, mp1, share1, edge[i], x[i, 0], x[i, 1], h, SA, gA, dgA, Sm, gm, dgm)
-                surface_jet(kind2, p2, x[i, 2], x[i, 3], SB)
+            if corner:
+                _corner_point(kind1, p1, mk1, mp1, share1, x[i, 0], x[i, 1], SA[0], Sm, gm2[0], dgm2[0])
+                _corner_point(kind2, p2, mk2, mp2, share2, x[i, 2], x[i, 3], SB, Sm, gm2[1], dgm2[1])
+                ma, ea = edge[i] // N_MARGINS, edge[i] % N_MARGINS
+                mb, eb = edge2[i] // N_MARGINS, edge2[i] % N_MARGINS
+                ndot[i] = corner_assemble(SA[0], SB, gm2[ma, ea], dgm2[ma, ea], 2 * ma, gm2[mb, eb], dgm2[mb, eb],
+                                          2 * mb, c1[i], s1[i], x[i], d, M2, F, J, work)
+                r = edge_update(F, J, x[i], tol, rcond, TOL_MARGIN)
             else:
-                _jet_points(kind2, p2, mk2, mp2, share2, edge[i], x[i, 2], x[i, 3], h, SA, gA, dgA, Sm, gm, dgm)
-                surface_jet(kind1, p1, x[i, 0], x[i, 1], SB)
-            ndot[i] = edge_assemble(SA, gA, dgA, SB, A, c1[i], s1[i], x[i], d, M2, h, F, J, work)
-            r = edge_update(F, J, x[i], tol, rcond)
+                if A == 0:
+                    _jet_points(kind1, p1, mk1, mp1, share1, edge[i], x[i, 0], x[i, 1], h, SA, gA, dgA, Sm, gm, dgm)
+                    surface_jet(kind2, p2, x[i, 2], x[i, 3], SB)
+                else:
+                    _jet_points(kind2, p2, mk2, mp2, share2, edge[i], x[i, 2], x[i, 3], h, SA, gA, dgA, Sm, gm, dgm)
+                    surface_jet(kind1, p1, x[i, 0], x[i, 1], SB)
+                ndot[i] = edge_assemble(SA, gA, dgA, SB, A, c1[i], s1[i], x[i], d, M2, h, F, J, work)
+                r = edge_update(F, J, x[i], tol, rcond, TOL_TANGENCY)
             if r != 0 or it == max_iter:
                 conv[i] = r == 1
                 iters = max(iters, it)
@@ -328,14 +356,24 @@ def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c
 
 
 @kernel
-def edge_step_batch(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, tol, rcond, state, ndot):
-    """One iteration of the edge Newton for surfaces evaluated by the caller: for every row, :func:`edge_assemble`
-    from ``SA (m, 3, 3, 6)``, ``gA (m, 3)``, ``dgA (m, 3, 2)``, ``SB (m, 3, 6)`` (its n1 . n2 into ``ndot (m,)``),
-    then :func:`edge_update` of ``x (m, 5)`` in place; ``state (m,)`` receives its result (1 converged, -1 failed,
-    0 stepped)."""
+def edge_step_batch(SA, gA, dgA, SB, gB, dgB, member, cols, c1, s1, x, d, M2, h, tol, tol_tangency, rcond, state,
+                    ndot):
+    """One iteration of the edge or corner Newton for surfaces evaluated by the caller: for every row,
+    :func:`edge_assemble` from ``SA (m, 3, 3, 6)``, ``gA (m, 3)``, ``dgA (m, 3, 2)``, ``SB (m, 3, 6)`` (a corner
+    row, ``cols (m, 2) >= 0``: :func:`~spiralbevel._core.tca_corner.corner_assemble` from the pinion's jet
+    ``SA[:, 0]``, the gear's ``SB``, the margins ``gA[:, 0]``, ``dgA[:, 0]`` and ``gB (m,)``, ``dgB (m, 2)`` of the
+    members at columns ``cols``; its n1 . n2 into ``ndot (m,)``),
+    then :func:`edge_update` of ``x (m, 5)`` in place (the tangency to ``tol_tangency``); ``state (m,)`` receives its
+    result (1 converged, -1 failed, 0 stepped)."""
     F = np.empty(5)
     J = np.empty((5, 5))
     work = np.empty((13, 6))
     for i in range(x.shape[0]):
-        ndot[i] = edge_assemble(SA[i], gA[i], dgA[i], SB[i], member[i], c1[i], s1[i], x[i], d, M2, h, F, J, work)
-        state[i] = edge_update(F, J, x[i], tol, rcond)
+        if cols[i, 0] >= 0:
+            ndot[i] = corner_assemble(SA[i, 0], SB[i], gA[i, 0], dgA[i, 0], cols[i, 0], gB[i], dgB[i], cols[i, 1],
+                                      c1[i], s1[i], x[i], d, M2, F, J, work)
+            state[i] = edge_update(F, J, x[i], tol, rcond, TOL_MARGIN)
+        else:
+            ndot[i] = edge_assemble(SA[i], gA[i], dgA[i], SB[i], member[i], c1[i], s1[i], x[i], d, M2, h, F, J,
+                                    work)
+            state[i] = edge_update(F, J, x[i], tol, rcond, tol_tangency)

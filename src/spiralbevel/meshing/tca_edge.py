@@ -12,9 +12,14 @@ surface contact solve the five equations
     g(q_A) = 0                                              (1: the point lies on A's boundary)
     n_B . t_A = 0,  t_A = R_A (r_A,u g_v - r_A,v g_u)/|.|     (1: tangency of the curve to B)
 
-(the same unknowns and assembly pose as the surface contact of :mod:`spiralbevel.meshing.contact_problem`). The
-Newton is compiled (:mod:`spiralbevel._core.tca_edge`: analytic Jacobian from the surface jets and the analytic
-margin gradients, a forward difference of the curve tangent for its q_A-derivatives). Surfaces with compiled jets
+(the same unknowns and assembly pose as the surface contact of :mod:`spiralbevel.meshing.contact_problem`).
+Where the touched point would lie beyond the mate's boundary, the teeth first touch where the two boundary curves
+meet, a corner: the tangency is replaced by the mate's boundary equation (both points on their own boundaries and
+coincident); where the boundary point runs past the end of its own boundary, the flank's vertex touches the mate (both
+equations of the same member) (:mod:`spiralbevel._core.tca_corner`; the TE is not stationary there). The
+Newton (:mod:`spiralbevel.meshing.tca_edge_solve`) is compiled (:mod:`spiralbevel._core.tca_edge`: analytic
+Jacobian from the surface jets and the analytic margin gradients, a forward difference of the curve tangent for its
+q_A-derivatives). Surfaces with compiled jets
 and margins (``jet``, ``boundary_jet``) run entirely in compiled code; others are evaluated by numpy between the
 compiled iterations (margins without ``boundary_jet``: ``boundary_margins`` with central differences).
 """
@@ -23,140 +28,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._core import tca_batch as _b
-from .._core import tca_edge as _ke
-from .._core.jets import GENERATED
-from .contact_surface import surface_derivatives
+from .tca_edge_solve import _all_margins, corner_index, corner_split, solve_edge_contacts
 
-__all__ = ["solve_edge_contacts", "edge_stage"]
-
-#: step of the forward difference of the curve tangent (surface parameters), and of the central difference of the
-#: margin gradient of surfaces without compiled margins
-_H_TAU = 1e-7
-_H_PARAM = 1e-6
-#: rank threshold of the Newton step (:func:`spiralbevel._core.tca_newton.step`)
-_RCOND = 1e-12
-
-
-def _boundary(surface):
-    """``(kind, prm)`` of a surface's compiled margins, or None."""
-    b = getattr(surface, "boundary_jet", None)
-    if b is None:
-        return None
-    return int(b[0]), np.ascontiguousarray(b[1], float)
-
-
-def _shares(kind, prm, b):
-    """True where the margins ``b`` of a generated flank evaluate the surface's own jet ``(kind, prm)``."""
-    return bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and np.array_equal(b[1][8:], prm))
-
-
-def _all_margins(surface, q):
-    """All boundary margins (m, k) of ``surface`` at ``q (m, 2)``: compiled where it has ``boundary_jet``."""
-    b = _boundary(surface)
-    if b is not None:
-        return _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))[0]
-    with np.errstate(invalid="ignore"):
-        return np.asarray(surface.boundary_margins(q), float)
-
-
-def _margin_jets(surface, q, e):
-    """Margin ``e (m,)`` and its gradient of ``surface`` at ``q (m, 2)``: (g (m,), dg (m, 2))."""
-    b = _boundary(surface)
-    m = np.arange(len(q))
-    if b is not None:
-        g, dg = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))
-        return g[m, e], dg[m, e]
-    h = _H_PARAM
-    st = np.stack([q, q + (h, 0), q - (h, 0), q + (0, h), q - (0, h)], 0)  # (5, m, 2)
-    with np.errstate(invalid="ignore"):
-        g = np.asarray(surface.boundary_margins(st), float)[:, m, e]  # (5, m)
-    return g[0], np.stack([(g[1] - g[2]) / (2 * h), (g[3] - g[4]) / (2 * h)], -1)
-
-
-def _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter):
-    """The edge Newton with the surfaces evaluated by numpy between compiled iterations; ``x`` updated in place."""
-    m = len(x)
-    conv = np.zeros(m, bool)
-    ndot = np.full(m, np.nan)
-    active = np.ones(m, bool)
-    h = _H_TAU
-    pert = np.array([[0, 0], [h, 0], [0, h]], float)
-    surfs = (prob.pinion, prob.gear)
-    d, M2, _ = prob._const
-    for _ in range(max_iter + 1):
-        a = np.flatnonzero(active)
-        if not a.size:
-            break
-        k = a.size
-        SA, SB = np.empty((k, 3, 3, 6)), np.empty((k, 3, 6))
-        gA, dgA = np.empty((k, 3)), np.empty((k, 3, 2))
-        for A in (0, 1):
-            s = member[a] == A
-            if not s.any():
-                continue
-            qa = (x[a[s], 2 * A:2 * A + 2][:, None, :] + pert).reshape(-1, 2)
-            with np.errstate(all="ignore"):
-                SA[s] = _b.stack_state(*surface_derivatives(surfs[A], qa)).reshape(-1, 3, 3, 6)
-                SB[s] = _b.stack_state(*surface_derivatives(surfs[1 - A], x[a[s], 2 - 2 * A:4 - 2 * A]))
-                g, dg = _margin_jets(surfs[A], qa, np.repeat(edge[a[s]], 3))
-            gA[s], dgA[s] = g.reshape(-1, 3), dg.reshape(-1, 3, 2)
-        xa = np.ascontiguousarray(x[a])
-        state, nd = np.empty(k, np.int64), np.empty(k)
-        with np.errstate(all="ignore"):
-            _ke.edge_step_batch(SA, gA, dgA, SB, np.ascontiguousarray(member[a]), c1[a], s1[a], xa, d, M2, h, tol,
-                                _RCOND, state, nd)
-        x[a], ndot[a] = xa, nd
-        conv[a[state == 1]] = True
-        active[a[state != 0]] = False
-    return conv, ndot
-
-
-def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30):
-    """Newton solution of the edge-contact equations (module docstring) for a batch of systems.
-
-    Parameters
-    ----------
-    prob : ContactProblem
-        The assembled pair (surfaces with ``boundary_margins``).
-    phi1_eff : (m,) float, rad
-        Effective pinion rotations (pair k: phi1 + 2 pi k / z1).
-    x0 : (m, 5) float
-        Starting points (q1, q2, phi2_eff), e.g. the surface contact beyond the boundary.
-    member : (m,) int
-        0: a boundary curve of the pinion against the gear flank; 1: of the gear against the pinion flank.
-    edge : (m,) int
-        Index into that member's ``boundary_names``.
-    tol : float, mm
-        Tolerance on the point coincidence (the boundary equation to 1e-12, the tangency to 1e-11:
-        :mod:`spiralbevel._core.tca_edge`).
-    max_iter : int
-        Newton iterations at most (a step is limited to 2 parameter units and 0.05 rad of phi2).
-
-    Returns
-    -------
-    x : (m, 5) float
-    converged : (m,) bool
-    ndot : (m,) float
-        n1 . n2 of the fixed-frame unit normals at x (about -1 at a contact).
-    """
-    phi1_eff = np.asarray(phi1_eff, float).reshape(-1)
-    x = np.array(x0, float, order="C").reshape(-1, 5)
-    member = np.ascontiguousarray(member, np.int64)
-    edge = np.ascontiguousarray(edge, np.int64)
-    if len(x) == 0:
-        return x, np.zeros(0, bool), np.zeros(0)
-    c1, s1 = np.cos(phi1_eff), np.sin(phi1_eff)
-    b1, b2 = _boundary(prob.pinion), _boundary(prob.gear)
-    if prob._jets is not None and b1 is not None and b2 is not None:
-        (k1, p1), (k2, p2) = prob._jets
-        d, M2, _ = prob._const
-        conv, ndot, _ = _ke.edge_newton_jets(k1, p1, b1[0], b1[1], _shares(k1, p1, b1), k2, p2, b2[0], b2[1],
-                                             _shares(k2, p2, b2), c1, s1, x, member, edge, d, M2, _H_TAU, tol,
-                                             max_iter, _RCOND)
-        return x, conv, ndot
-    conv, ndot = _newton_numpy(prob, c1, s1, x, member, edge, tol, max_iter)
-    return x, conv, ndot
+__all__ = ["solve_edge_contacts", "edge_stage", "corner_split", "corner_index"]
 
 
 def _best_of_others(te):
@@ -209,8 +83,12 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     edge point lies on the rest of its own flank's boundary segment (every other margin >= 0), the touched point on
     the other member's real flank, the flank normals of the two members are opposed and the TE is within half a gear
     pitch. Then a march over positions: a pair without a valid contact next to a position where its edge contact
-    leads the surface contacts of the other pairs is solved from that neighbour (the same edge), until no new one
-    is found (edge contacts that lead nowhere do not decide the contact and are not followed).
+    leads the surface contacts of the other pairs is solved from that neighbour (the same edge; from a corner also
+    its two boundaries as edges), until no new one is found (edge contacts that lead nowhere do not decide the
+    contact and are not followed). Corners are seeded by solutions that run past another boundary (an edge's touched
+    point beyond the mate's boundary, where it could still lead: the corner's TE is bounded by the edge's; a
+    corner's point past the end of its own boundary: that flank's vertex) and labelled ("pinion/gear",
+    "heel/top corner") or, for a vertex, ("pinion", "heel/fillet corner").
     """
     from .contact_surface import surface_contains
 
@@ -224,33 +102,94 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     if not all(names):
         return x_edge, te_edge, label
 
-    def try_solve(ii, jj, mem, ee, x0):
+    def constraints(mem, ee):
+        """The boundaries (member, index) a system puts its points on: one for an edge, two for a corner."""
+        corner, ma, ea, mb, eb = corner_split(prob, mem, ee)
+        return [((int(ma[a]), int(ea[a])), (int(mb[a]), int(eb[a]))) if corner[a] else ((int(mem[a]), int(ee[a])),)
+                for a in range(len(mem))]
+
+    def try_solve(ii, jj, mem, ee, x0, depth=2):
+        """Solve the edge and corner systems (positions ii, pair indices jj, member, edge index) from x0 and keep
+        the valid solutions that lead their pair's previous one. With ``depth`` > 0, a solution whose point runs
+        past another boundary (the touched point beyond the mate's boundary, or the boundary point past the end of
+        its own segment) seeds the corner of its boundaries with that one, solved in a further round.
+        Returns which systems gave a new best contact of their pair."""
         if not len(ii):
             return np.zeros(0, bool)
         phi_eff = phi1[ii] + pairs[jj] * T1
         xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
-        ok = conv.copy()
         tolm = 1e-9
+        gg = [_all_margins(surfs[m], xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
+        ok = conv.copy()
+        # held[a, m, e]: system a holds its point of member m on boundary e (that margin is 0 by construction)
+        corner, ma, ea, mb, eb = corner_split(prob, mem, ee)
+
+        def cons(a):
+            """The boundaries (member, index) system a holds its points on."""
+            if corner[a]:
+                return (int(ma[a]), int(ea[a])), (int(mb[a]), int(eb[a]))
+            return ((int(mem[a]), int(ee[a])),)
+
+        held = [np.zeros(g.shape, bool) for g in gg]
+        r = np.arange(len(ii))
         for m in (0, 1):
-            s = mem == m
-            if not s.any():
-                continue
-            gg = _all_margins(surfs[m], xs[s, 2 * m:2 * m + 2])
-            gg[np.arange(s.sum()), ee[s]] = np.inf  # the edge's own margin is 0 by construction
+            s_ = ~corner & (mem == m)
+            held[m][r[s_], ee[s_]] = True
+            for mc, ec in ((ma, ea), (mb, eb)):
+                s_ = corner & (mc == m)
+                held[m][r[s_], ec[s_]] = True
+        for m in (0, 1):
+            own = held[m].any(axis=1)
             with np.errstate(invalid="ignore"):
-                ok[s] &= np.all(gg >= -tolm, axis=1)  # NaN (no surface) fails
-        ok &= np.where(mem == 0, surface_contains(prob.gear, xs[:, 2:4]), surface_contains(prob.pinion, xs[:, 0:2]))
+                on_rest = np.all((gg[m] >= -tolm) | held[m], axis=1)  # NaN (no surface) fails
+            # a member with no point held on a boundary: the point lies on its real flank
+            ok &= np.where(own, on_rest, surface_contains(surfs[m], xs[:, 2 * m:2 * m + 2]))
         with np.errstate(invalid="ignore"):
-            ok &= ndot < -0.5
             te = te_of(xs[:, 4], ii, jj)
-            ok &= np.abs(te) < np.pi / prob.z2
+            good = conv & (ndot < -0.5) & (np.abs(te) < np.pi / prob.z2)
+        ok &= good
         new = np.zeros(len(ii), bool)
         for a in np.flatnonzero(ok):
             i, j = int(ii[a]), int(jj[a])
             if not np.isfinite(te_edge[i, j]) or te[a] > te_edge[i, j]:
                 te_edge[i, j], x_edge[i, j] = te[a], xs[a]
-                label[(i, j)] = (("pinion", "gear")[mem[a]], names[mem[a]][ee[a]], int(mem[a]), int(ee[a]))
+                c = cons(a)
+                if len(c) == 2:
+                    ms = {m for m, _ in c}
+                    who = "pinion/gear" if len(ms) == 2 else ("pinion", "gear")[c[0][0]]
+                    label[(i, j)] = (who, f"{names[c[0][0]][c[0][1]]}/{names[c[1][0]][c[1][1]]} corner", 0,
+                                     int(ee[a]))
+                else:
+                    label[(i, j)] = (("pinion", "gear")[mem[a]], names[mem[a]][ee[a]], int(mem[a]), int(ee[a]))
                 new[a] = True
+        if depth > 0:
+            # a solution running past another boundary: the real teeth may first touch where its boundary meets
+            # that one (two boundary curves meeting, or a flank's vertex against the mate), started from it
+            # A corner is a point of an edge solution's boundary curve, met by the mate at a TE no larger than the
+            # curve's stationary maximum: only edge solutions that could still lead their pair's other contacts seed
+            # one (a corner bounds no vertex on its curve: corners seed theirs)
+            with np.errstate(invalid="ignore"):
+                bound = np.fmax(best_other[ii, jj] - te_tie, te_edge[ii, jj])
+                lead = ~(te <= bound) | corner
+            I, E = [], []
+            for a in np.flatnonzero(good & ~ok & lead):
+                c = cons(a)
+                for m in (0, 1):
+                    for f in np.flatnonzero(~(gg[m][a] >= 0)):
+                        if names[m][f] == "generated" or (m, int(f)) in c:
+                            continue
+                        if len(c) == 1:
+                            pair_ = (c[0], (m, int(f)))
+                        else:  # a corner whose point of member m runs past the end of its boundary: that vertex
+                            own = [b for b in c if b[0] == m]
+                            if len(own) != 1 or len(c) != 2 or c[0][0] == c[1][0]:
+                                continue
+                            pair_ = (own[0], (m, int(f)))
+                        pair_ = tuple(sorted(pair_))
+                        I.append(a), E.append(corner_index(prob, *pair_))
+            if I:
+                I = np.array(I)
+                new[I] |= try_solve(ii[I], jj[I], np.zeros(len(I), int), np.array(E), xs[I], depth - 1)
         return new
 
     # 1. pairs whose surface contact lies beyond a boundary: the boundaries crossed there on either member, and the
@@ -321,6 +260,12 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         """Pair j's edge contact at position i leads the surface contacts of the other pairs there."""
         return te_edge[i, j] >= best_other[i, j]
 
+    def systems(m, e):
+        """The systems tried at a neighbour of a contact on boundary e of member m: that one, and from a corner its
+        two boundaries as edges too (past the corner one of the boundary curves runs against the mate's flank)."""
+        c = constraints(np.array([m]), np.array([e]))[0]
+        return [(m, e)] + ([b for b in c if names[b[0]][b[1]] != "generated"] if len(c) == 2 else [])
+
     front = {key for key in label if leads(*key)}
     while front:
         cand = {}
@@ -331,14 +276,14 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
                 if 0 <= k < n and not phys[k, j] and (k, j) not in label and (k, j) not in cand:
                     x0 = x_edge[i, j].copy()
                     x0[4] -= prob.ratio * (phi1[k] - phi1[i])
-                    cand[(k, j)] = (m, e, x0)
+                    cand[(k, j)] = (systems(m, e), x0)
         if not cand:
             break
-        keys = list(cand)
-        I = np.array([k[0] for k in keys])
-        Jp = np.array([k[1] for k in keys])
-        M = np.array([cand[k][0] for k in keys])
-        E = np.array([cand[k][1] for k in keys])
-        new = try_solve(I, Jp, M, E, np.array([cand[k][2] for k in keys]))
+        keys = [(k, me) for k in cand for me in cand[k][0]]
+        I = np.array([q[0][0] for q in keys])
+        Jp = np.array([q[0][1] for q in keys])
+        M = np.array([q[1][0] for q in keys])
+        E = np.array([q[1][1] for q in keys])
+        new = try_solve(I, Jp, M, E, np.array([cand[q[0]][1] for q in keys]))
         front = {(int(I[a]), int(Jp[a])) for a in np.flatnonzero(new) if leads(int(I[a]), int(Jp[a]))}
     return x_edge, te_edge, label

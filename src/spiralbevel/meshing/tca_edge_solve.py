@@ -1,0 +1,196 @@
+"""The Newton solution of TCA's edge and corner systems for a batch (:func:`solve_edge_contacts`), the equations of
+:mod:`spiralbevel.meshing.tca_edge` and :mod:`spiralbevel._core.tca_corner`: compiled entirely where both surfaces
+have compiled jets and margins (``jet``, ``boundary_jet``), else with the surfaces evaluated by numpy between the
+compiled iterations (margins without ``boundary_jet``: ``boundary_margins`` with central differences)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._core import tca_batch as _b
+from .._core import tca_edge as _ke
+from .._core.jets import GENERATED
+from .contact_surface import surface_derivatives
+
+__all__ = ["solve_edge_contacts", "corner_split", "corner_index"]
+
+#: step of the forward difference of the curve tangent (surface parameters), and of the central difference of the
+#: margin gradient of surfaces without compiled margins
+_H_TAU = 1e-7
+_H_PARAM = 1e-6
+#: tolerance of the tangency equation where a margin gradient is a central difference (its round-off, about
+#: 1e-16 |g| / _H_PARAM, is 1e-9 of the gradient; the TE is stationary along the curve at the root, so an error of
+#: the tangency of 1e-9 moves the TE by its square)
+_TOL_TANGENCY_FD = 1e-9
+#: rank threshold of the Newton step (:func:`spiralbevel._core.tca_newton.step`)
+_RCOND = 1e-12
+
+
+def _boundary(surface):
+    """``(kind, prm)`` of a surface's compiled margins, or None."""
+    b = getattr(surface, "boundary_jet", None)
+    if b is None:
+        return None
+    return int(b[0]), np.ascontiguousarray(b[1], float)
+
+
+def _shares(kind, prm, b):
+    """True where the margins ``b`` of a generated flank evaluate the surface's own jet ``(kind, prm)``."""
+    return bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and np.array_equal(b[1][8:], prm))
+
+
+def _all_margins(surface, q):
+    """All boundary margins (m, k) of ``surface`` at ``q (m, 2)``: compiled where it has ``boundary_jet``."""
+    b = _boundary(surface)
+    if b is not None:
+        return _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))[0]
+    with np.errstate(invalid="ignore"):
+        return np.asarray(surface.boundary_margins(q), float)
+
+
+def _margin_jets(surface, q, e):
+    """Margin ``e (m,)`` and its gradient of ``surface`` at ``q (m, 2)``: (g (m,), dg (m, 2))."""
+    b = _boundary(surface)
+    m = np.arange(len(q))
+    if b is not None:
+        g, dg = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))
+        return g[m, e], dg[m, e]
+    h = _H_PARAM
+    st = np.stack([q, q + (h, 0), q - (h, 0), q + (0, h), q - (0, h)], 0)  # (5, m, 2)
+    with np.errstate(invalid="ignore"):
+        g = np.asarray(surface.boundary_margins(st), float)[:, m, e]  # (5, m)
+    return g[0], np.stack([(g[1] - g[2]) / (2 * h), (g[3] - g[4]) / (2 * h)], -1)
+
+
+def _newton_numpy(prob, c1, s1, x, member, edge, corner, tol, max_iter):
+    """The edge and corner Newton with the surfaces evaluated by numpy between compiled iterations; ``x`` updated in
+    place. ``corner (m, 4)``: (ma, ea, mb, eb) of a corner row (member 0), -1 elsewhere."""
+    m = len(x)
+    conv = np.zeros(m, bool)
+    ndot = np.full(m, np.nan)
+    active = np.ones(m, bool)
+    h = _H_TAU
+    pert = np.array([[0, 0], [h, 0], [0, h]], float)
+    surfs = (prob.pinion, prob.gear)
+    d, M2, _ = prob._const
+    tol_t = _ke.TOL_TANGENCY if all(_boundary(sf) is not None for sf in surfs) else _TOL_TANGENCY_FD
+    for _ in range(max_iter + 1):
+        a = np.flatnonzero(active)
+        if not a.size:
+            break
+        k = a.size
+        SA, SB = np.empty((k, 3, 3, 6)), np.empty((k, 3, 6))
+        gA, dgA = np.empty((k, 3)), np.empty((k, 3, 2))
+        gB, dgB = np.zeros(k), np.zeros((k, 2))
+        for A in (0, 1):
+            s = member[a] == A
+            if not s.any():
+                continue
+            qa = (x[a[s], 2 * A:2 * A + 2][:, None, :] + pert).reshape(-1, 2)
+            with np.errstate(all="ignore"):
+                SA[s] = _b.stack_state(*surface_derivatives(surfs[A], qa)).reshape(-1, 3, 3, 6)
+                SB[s] = _b.stack_state(*surface_derivatives(surfs[1 - A], x[a[s], 2 - 2 * A:4 - 2 * A]))
+                g, dg = _margin_jets(surfs[A], qa, np.repeat(edge[a[s]], 3))
+            gA[s], dgA[s] = g.reshape(-1, 3), dg.reshape(-1, 3, 2)
+        ca = corner[a]
+        for col, g_, dg_ in ((0, gA[:, 0], dgA[:, 0]), (2, gB, dgB)):  # a corner: its two margins
+            for mm in (0, 1):
+                c = ca[:, col] == mm
+                if c.any():
+                    with np.errstate(all="ignore"):
+                        g_[c], dg_[c] = _margin_jets(surfs[mm], x[a[c], 2 * mm:2 * mm + 2], ca[c, col + 1])
+        cols = np.ascontiguousarray(np.where(ca[:, 0:1] >= 0, 2 * ca[:, 0::2], -1), np.int64)
+        xa = np.ascontiguousarray(x[a])
+        state, nd = np.empty(k, np.int64), np.empty(k)
+        with np.errstate(all="ignore"):
+            _ke.edge_step_batch(SA, gA, dgA, SB, gB, dgB, np.ascontiguousarray(member[a]), cols, c1[a], s1[a], xa,
+                                d, M2, h, tol, tol_t, _RCOND, state, nd)
+        x[a], ndot[a] = xa, nd
+        conv[a[state == 1]] = True
+        active[a[state != 0]] = False
+    return conv, ndot
+
+
+def corner_split(prob, member, edge):
+    """Corner systems among ``(member (m,), edge (m,))``: member 0 with an edge index k1 + a K + b past the pinion's
+    k1 boundaries (K = k1 + k2 boundaries of both members, :func:`corner_index`) is the corner where boundary a meets
+    boundary b, both numbered over the pinion's boundaries then the gear's.
+
+    Returns
+    -------
+    corner : (m,) bool
+    ma, ea, mb, eb : (m,) int
+        Member (0 pinion, 1 gear) and boundary index of a and of b (0 where not a corner).
+    """
+    k1 = len(getattr(prob.pinion, "boundary_names", ()))
+    K = max(1, k1 + len(getattr(prob.gear, "boundary_names", ())))
+    member, edge = np.asarray(member), np.asarray(edge)
+    corner = (member == 0) & (edge >= k1)
+    c = np.where(corner, edge - k1, 0)
+    a, b = c // K, c % K
+    ma, mb = (a >= k1).astype(int), (b >= k1).astype(int)
+    return corner, ma, a - k1 * ma, mb, b - k1 * mb
+
+
+def corner_index(prob, a, b):
+    """The edge index (with member 0) of the corner where boundary ``a = (member, index)`` meets ``b``: two
+    boundaries of different members (their curves meet) or of the same member (its flank's vertex touches the
+    other flank)."""
+    k1 = len(prob.pinion.boundary_names)
+    K = k1 + len(prob.gear.boundary_names)
+    return k1 + (a[0] * k1 + a[1]) * K + b[0] * k1 + b[1]
+
+
+def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30):
+    """Newton solution of the edge-contact equations (module docstring) for a batch of systems, corner systems
+    (:mod:`spiralbevel._core.tca_corner`: two boundary curves meeting) among them.
+
+    Parameters
+    ----------
+    prob : ContactProblem
+        The assembled pair (surfaces with ``boundary_margins``).
+    phi1_eff : (m,) float, rad
+        Effective pinion rotations (pair k: phi1 + 2 pi k / z1).
+    x0 : (m, 5) float
+        Starting points (q1, q2, phi2_eff), e.g. the surface contact beyond the boundary.
+    member : (m,) int
+        0: a boundary curve of the pinion against the gear flank; 1: of the gear against the pinion flank.
+    edge : (m,) int
+        Index into that member's ``boundary_names``; with member 0, an index :func:`corner_index` past the pinion's
+        boundaries is a corner (the pinion's boundary e1 meets the gear's boundary e2, :func:`corner_split`).
+    tol : float, mm
+        Tolerance on the point coincidence (the boundary equation to 1e-12, the tangency to 1e-11:
+        :mod:`spiralbevel._core.tca_edge`).
+    max_iter : int
+        Newton iterations at most (a step is limited to 2 parameter units and 0.05 rad of phi2).
+
+    Returns
+    -------
+    x : (m, 5) float
+    converged : (m,) bool
+    ndot : (m,) float
+        n1 . n2 of the fixed-frame unit normals at x (about -1 at a contact).
+    """
+    phi1_eff = np.asarray(phi1_eff, float).reshape(-1)
+    x = np.array(x0, float, order="C").reshape(-1, 5)
+    member = np.ascontiguousarray(member, np.int64)
+    edge = np.ascontiguousarray(edge, np.int64)
+    if len(x) == 0:
+        return x, np.zeros(0, bool), np.zeros(0)
+    c1, s1 = np.cos(phi1_eff), np.sin(phi1_eff)
+    corner, ma, ea, mb, eb = corner_split(prob, member, edge)
+    b1, b2 = _boundary(prob.pinion), _boundary(prob.gear)
+    N = _ke.N_MARGINS
+    if (prob._jets is not None and b1 is not None and b2 is not None
+            and len(prob.pinion.boundary_names) == len(prob.gear.boundary_names) == N):
+        edge = np.ascontiguousarray(np.where(corner, ma * N + ea, edge), np.int64)
+        edge2 = np.ascontiguousarray(np.where(corner, mb * N + eb, -1), np.int64)
+        (k1, p1), (k2, p2) = prob._jets
+        d, M2, _ = prob._const
+        conv, ndot, _ = _ke.edge_newton_jets(k1, p1, b1[0], b1[1], _shares(k1, p1, b1), k2, p2, b2[0], b2[1],
+                                             _shares(k2, p2, b2), c1, s1, x, member, edge, edge2, d, M2, _H_TAU,
+                                             tol, max_iter, _RCOND)
+        return x, conv, ndot
+    cols = np.where(corner[:, None], np.stack([ma, ea, mb, eb], 1), -1)
+    conv, ndot = _newton_numpy(prob, c1, s1, x, member, np.where(corner, 0, edge), cols, tol, max_iter)
+    return x, conv, ndot
