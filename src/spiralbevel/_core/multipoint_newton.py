@@ -43,6 +43,7 @@ import numpy as np
 
 from .generation_blade_jet import _E, _ERATE, blade_jet_point
 from .jit import kernel
+from .linalg import lu_solve
 
 __all__ = ["solve_systems", "march"]
 
@@ -167,31 +168,13 @@ def _system(prm1, prm2, z, x, target, rate, is_mean, c, F, J, uu, S1, S2, Sp, Sm
 
 @kernel
 def _lu_step(J, F, dx):
-    """dx = -J^-1 F by Gaussian elimination with partial pivoting (6 x 6, J and F overwritten); NaN if singular."""
-    n = 6
-    for k in range(n):
-        p = k
-        for i in range(k + 1, n):
-            if abs(J[i, k]) > abs(J[p, k]):
-                p = i
-        if J[p, k] == 0.0 or not math.isfinite(J[p, k]):
-            for i in range(n):
-                dx[i] = math.nan
-            return
-        if p != k:
-            for j in range(n):
-                J[k, j], J[p, j] = J[p, j], J[k, j]
-            F[k], F[p] = F[p], F[k]
-        for i in range(k + 1, n):
-            m = J[i, k] / J[k, k]
-            for j in range(k, n):
-                J[i, j] -= m * J[k, j]
-            F[i] -= m * F[k]
-    for i in range(n - 1, -1, -1):     # back substitution of J y = F with dx = -y already known for j > i
-        s = F[i]
-        for j in range(i + 1, n):
-            s += J[i, j] * dx[j]
-        dx[i] = -s / J[i, i]
+    """dx = -J^-1 F (6 x 6, J and F overwritten, ``linalg.lu_solve``); NaN if singular."""
+    if lu_solve(J, F, dx):
+        for i in range(dx.size):
+            dx[i] = -dx[i]
+    else:
+        for i in range(dx.size):
+            dx[i] = math.nan
 
 
 @kernel

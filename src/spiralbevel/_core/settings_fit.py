@@ -31,6 +31,7 @@ import numpy as np
 from .generation_blade_jet import (_CHI0, _E, _G, _HEAD, _M, _Q, _RC, _RH, _RP, _S, _UJ, _UP, _XB, _XD, _ZC,
                                    blade_jet_u)
 from .jit import kernel
+from .linalg import lu_solve
 
 __all__ = ["BAD", "CODES", "invariants", "residual", "newton"]
 
@@ -170,34 +171,6 @@ def residual(prm0, cut, codes, x, goal, w, f):
 
 
 @kernel
-def _solve(J, b, dx):
-    """dx = J^-1 b by Gaussian elimination with partial pivoting (J, b overwritten); False where J is singular."""
-    n = b.size
-    for k in range(n):
-        p = k
-        for i in range(k + 1, n):
-            if abs(J[i, k]) > abs(J[p, k]):
-                p = i
-        if J[p, k] == 0.0 or not math.isfinite(J[p, k]):
-            return False
-        if p != k:
-            for j in range(n):
-                J[k, j], J[p, j] = J[p, j], J[k, j]
-            b[k], b[p] = b[p], b[k]
-        for i in range(k + 1, n):
-            m = J[i, k] / J[k, k]
-            for j in range(k, n):
-                J[i, j] -= m * J[k, j]
-            b[i] -= m * b[k]
-    for i in range(n - 1, -1, -1):
-        s = b[i]
-        for j in range(i + 1, n):
-            s -= J[i, j] * dx[j]
-        dx[i] = s / J[i, i]
-    return True
-
-
-@kernel
 def jacobian(prm0, cut, codes, x, goal, w, rel_step, J):
     """Central-difference Jacobian (7, 7) of :func:`residual` at ``x`` into ``J`` (step rel_step max(1, |x_j|))."""
     fp, fm, xp = np.empty(7), np.empty(7), x.copy()
@@ -228,7 +201,7 @@ def newton(prm0, cut, codes, x0, goal, w, max_step, tol, max_iter, rel_step):
         jacobian(prm0, cut, codes, x, goal, w, rel_step, J)
         A[:, :] = J
         b[:] = -f
-        if not _solve(A, b, dx):
+        if not lu_solve(A, b, dx):
             if np.all(np.isfinite(J)):
                 dx[:] = np.linalg.lstsq(J, -f)[0]
             else:
