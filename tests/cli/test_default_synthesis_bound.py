@@ -10,20 +10,9 @@ from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
 from spiralbevel.job.blank import blank_from_design
 from spiralbevel.meshing import synthesis as syn
+from _design_12x41 import design_12x41
 
-DESIGN = """
-[gear_set]
-pinion_teeth = 12
-gear_teeth = 41
-shaft_angle = 90
-module = 5
-face_width = 30
-normal_pressure_angle = 20
-mean_spiral_angle = 35
-pinion_hand = "RH"
-[flank]
-kind = "face-milled"
-"""
+DESIGN = design_12x41()
 
 
 def test_failing_syntheses_are_bounded_and_named(monkeypatch):

@@ -11,21 +11,7 @@ from spiralbevel.generation.basic_settings_solve import FlankFit
 from spiralbevel.io.design_file import parse_design
 from spiralbevel.job.blank import blank_from_design
 from spiralbevel.job.facemilled import flank_checks
-
-DESIGN = """
-[gear_set]
-pinion_teeth = {z1}
-gear_teeth = 41
-shaft_angle = 90
-module = 5
-face_width = 30
-normal_pressure_angle = 20
-mean_spiral_angle = 35
-pinion_hand = "RH"
-[flank]
-kind = "face-milled"
-"""
-
+from _design_12x41 import design_12x41
 
 @pytest.mark.parametrize("z1", [9, 12])
 def test_undercut_threshold_at_the_achieved_angle(z1):
@@ -33,7 +19,7 @@ def test_undercut_threshold_at_the_achieved_angle(z1):
     closed-form inversion of the nominal limit depth, L(alpha) = L(alpha_n) sin^2(alpha) / sin^2(alpha_n)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        bl = blank_from_design(parse_design(DESIGN.format(z1=z1)))
+        bl = blank_from_design(parse_design(design_12x41(z1)))
     a0 = min(bl.alpha_nD, bl.alpha_nC)
     L0 = section_limit_depth(bl, 1, "m")
     a_root = math.asin(math.sqrt(bl.hfm1 / L0) * math.sin(a0))     # hfm1 = L(a_root)
@@ -88,7 +74,7 @@ def test_pointed_teeth_at_the_achieved_angles(z1):
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        bl = blank_from_design(parse_design(DESIGN.format(z1=z1)))
+        bl = blank_from_design(parse_design(design_12x41(z1)))
     ac = bl.alpha_nC
     for k in (1, 2):
         dvn = virtual_normal_diameter(bl.Rm, getattr(bl, f"delta{k}"), bl.beta_m1,
