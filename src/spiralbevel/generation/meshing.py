@@ -9,8 +9,6 @@ y -> -y in the member frame (and the machine is mirrored, docs/conventions.md "M
 
 from __future__ import annotations
 
-from functools import cached_property
-
 import numpy as np
 
 from spiralbevel._core import generation as _g
@@ -104,13 +102,16 @@ class Generator:
                                        "the equation of meshing has no solution: the cutter does not reach the blank")
         return self._evaluate(sol["u"], sol["phi"], sol["psi"], curvature)
 
-    @cached_property
     def _kernel_params(self):
-        """(prm, fil) of the compiled flank points (``_core.generation_points``): member frame of this hand."""
-        from spiralbevel._core import generation_blade_jet, generation_points  # numba off the CLI's import path
+        """(prm, fil) of the compiled flank points (``_core.generation_points``) in the member frame of this hand
+        (built once per hand)."""
+        cache = self.__dict__.setdefault("_prm_by_hand", {})
+        if self.hand not in cache:
+            from spiralbevel._core import generation_blade_jet, generation_points  # numba off the CLI's import path
 
-        return (generation_blade_jet.parameters(self.cp, self.mp, self.hand is Hand.RIGHT, 0.0),
-                generation_points.fillet_parameters(self.cp))
+            cache[self.hand] = (generation_blade_jet.parameters(self.cp, self.mp, self.hand is Hand.RIGHT, 0.0),
+                                generation_points.fillet_parameters(self.cp))
+        return cache[self.hand]
 
     def _evaluate(self, u, phi, psi, curvature):
         """Points, outward normals and (if ``curvature``) principal curvatures and directions at (u, phi, psi_c)
@@ -118,7 +119,7 @@ class Generator:
         docs/theory/generation.md, Eqs. (G13)-(G15), #curvature-transfer)."""
         from spiralbevel._core.generation_points import flank_points
 
-        prm, fil = self._kernel_params
+        prm, fil = self._kernel_params()
         shape = u.shape
         flat = [np.ascontiguousarray(x, float).reshape(-1) for x in (u, phi, psi)]
         P, N, E1, E2, k1, k2 = flank_points(prm, fil, *flat, bool(curvature))
