@@ -103,15 +103,18 @@ class Generator:
         return self._evaluate(sol["u"], sol["phi"], sol["psi"], curvature)
 
     def _kernel_params(self):
-        """(prm, fil) of the compiled flank points (``_core.generation_points``) in the member frame of this hand
-        (built once per hand)."""
-        cache = self.__dict__.setdefault("_prm_by_hand", {})
-        if self.hand not in cache:
+        """(prm, fil) of the compiled flank points (``_core.generation_points``) in the member frame of this hand,
+        built again whenever ``hand``, ``cp`` or ``mp`` has been replaced (callers set another hand, or a copy with
+        another offset law)."""
+        key = (self.hand, self.cp, self.mp)
+        cached = self.__dict__.get("_prm_cache")
+        if cached is None or any(a is not b for a, b in zip(cached[0], key)):
             from spiralbevel._core import generation_blade_jet, generation_points  # numba off the CLI's import path
 
-            cache[self.hand] = (generation_blade_jet.parameters(self.cp, self.mp, self.hand is Hand.RIGHT, 0.0),
-                                generation_points.fillet_parameters(self.cp))
-        return cache[self.hand]
+            cached = (key, (generation_blade_jet.parameters(self.cp, self.mp, self.hand is Hand.RIGHT, 0.0),
+                            generation_points.fillet_parameters(self.cp)))
+            self.__dict__["_prm_cache"] = cached
+        return cached[1]
 
     def _evaluate(self, u, phi, psi, curvature):
         """Points, outward normals and (if ``curvature``) principal curvatures and directions at (u, phi, psi_c)
