@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from .generation_blade_jet import _E, _Q, _S, blade_jet_point, blade_jet_u
+from .generation_blade_jet import _E, _Q, _S, blade_jet_du, blade_jet_point
 from .jit import kernel
 
 __all__ = ["axial_radius", "locate_axial_radius", "locate_R_u", "locate_rows", "on_branch"]
@@ -170,7 +170,7 @@ def locate_rows(prm, x0, axial, radius, tol, max_iter, max_step, Rc, phi_span, u
 @kernel
 def _residual_R_u(prm, phi, psi, R, ut, sd, cd, S, F, J):
     """F (2,), J (2, 2) of the (R, u) system at (phi, psi); returns u (mm)."""
-    u, u_phi, u_psi = blade_jet_u(prm, phi, psi, S)
+    u, u_phi, u_psi = blade_jet_du(prm, phi, psi, S)
     x, y, z = S[0, 0], S[1, 0], S[2, 0]
     rad = math.sqrt(x * x + y * y)
     F[0] = rad * sd + z * cd - R
