@@ -48,7 +48,10 @@ class BladeLocator:
         # starts from the inner part of the window (the contact zone itself); solutions anywhere in it
         P, D = np.meshgrid(np.linspace(-psi_span, psi_span, n_psi), np.linspace(-0.5, 0.5, n_phi), indexing="ij")
         Phi = gen.reference_angle(P) + D
-        ax, rad, u = gen.blade_axial_radial(Phi, P)
+        from spiralbevel._core import blade_locate  # numba off the CLI's import path
+
+        ax, rad, u = (a.reshape(P.shape) for a in blade_locate.axial_radius(self._prm, np.stack([Phi, P], -1)
+                                                                             .reshape(-1, 2)))
         R, h = outline.Rh(ax, rad)
         depth = outline.ham + outline.hfm
         mR = 0.3 * (outline.Re - outline.Ri)
