@@ -295,6 +295,13 @@ def _synthesize_sides(sy, blank, setups, syn, refit=None):
                                    "gear_set.cutter_radius or gear_set.mean_spiral_angle", tried, float("inf"), None)
         _, res, free = best
         source = f"local synthesis ({name} side, free = {free})"
+        if k_level:   # a reduced TE level is not the design's: say so (the TCA's TE check compares with the level used)
+            source += f"; parabolic TE level reduced to {levels[-1]:g} arcsec (design {sy.te_magnitude:g} arcsec)"
+            warnings.warn(f"{name} side: the default synthesis found no pinion flank that covers the face and meshes "
+                          f"at the design TE level {sy.te_magnitude:g} arcsec and developed the pair at "
+                          f"{levels[-1]:g} arcsec (synthesis.{name}.te_magnitude_arcsec); give a [synthesis] section "
+                          "(synthesis.te_magnitude, synthesis.path_direction, synthesis.semi_major_axis) or change "
+                          "gear_set.cutter_radius or gear_set.mean_spiral_angle", DesignWarning, stacklevel=2)
         if res.pinion_cutter.point_width < pin.cutter.point_width - 1e-9:   # gearset/pinion_fillet.lower_root
             source += (f"; root lowered onto the root cone: blade extended to a point width of "
                        f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
