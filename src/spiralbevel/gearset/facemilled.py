@@ -121,7 +121,8 @@ DEFAULT_MAX_SYNTHESES = 16
 #: pinion flank to second order at M, the set of free settings shapes it away from M, and with it where the contact
 #: runs near the ends of the mesh cycle (38/92 at beta 30.5 deg, coast: with the blank offset free every direction
 #: touches the pinion's fillet at 2 to 13 of 41 positions, with the modified roll free the path at -40 deg stays
-#: inside; bench/bench_robustness.py, seed 2)
+#: inside, bench/bench_robustness.py seed 2; 34/194 at beta 6.2 deg, seed 1: no pinion flank of the first set that
+#: converges covers the face at 8 arcsec, one of another set does, where the TE level was halved before)
 DEFAULT_OTHER_SET_SYNTHESES = 18
 
 #: TE levels (fractions of the default's) tried when no candidate at the default level gives a pinion flank that
@@ -337,6 +338,12 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
     for the default synthesis the first of ``DEFAULT_CANDIDATES`` whose pair keeps the bearing inside both flanks
     over the whole mesh cycle (TCA: real contact, no edge, at every position); if none does, the one with the fewest
     positions off the flank. At most ``max_syntheses`` syntheses (failed ones included) for the default.
+
+    A default depth candidate (M below the pitch line) whose pinion misses the mean-point angle check is synthesized
+    once more at its depth scaled to ``DEFAULT_DEPTH_ANGLE_MARGIN`` of the depth at which it would reach the check
+    (the deviation is proportional to the depth). When still no candidate keeps the bearing inside, each path
+    direction at the pitch point is synthesized with the sets of solved settings not tried for it yet, at most
+    ``max_other`` more syntheses (``DEFAULT_OTHER_SET_SYNTHESES``).
 
     With ``refit``, a default candidate whose bearing leaves the flanks at some position gets its pinion's root put
     back on the root cone (:func:`~spiralbevel.gearset.pinion_fillet.lower_root`) and its derived edge radius
