@@ -8,7 +8,9 @@ local synthesis of both pinion sides (the developed pair by default) and the TCA
 developed when every step succeeds and both TCA sides have contact at every position. Prints the fraction developed,
 the time per design, and every failure with its error message (a failure must be a clear ``SpiralBevelError``, never a
 traceback or NaN); of the developed ones, how many have all four flanks' mean-point angles within 0.05 deg of the
-design and a bearing inside both flanks (no edge contact).
+design, a bearing inside both flanks (no edge contact) and the TE level of both sides at the design's (the default
+synthesis' 8 arcsec used, not a reduced fallback level, and the TCA's parabolic level within 10 % of it); a design
+*meets every check* when it is developed and passes all three.
 
 Usage: ``python bench/bench_robustness.py [n_designs] [seed] [part] [parts]`` (default 40 designs, seed 1); with
 ``parts`` > 1 only the designs i with i % parts == part are run (the same sample, split over processes).
@@ -26,6 +28,7 @@ import numpy as np
 from spiralbevel.errors import SpiralBevelError
 from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
+from spiralbevel.job.facemilled import DEFAULT_SYNTHESIS
 from spiralbevel.job.blank import blank_from_design
 from spiralbevel.job.tca import run_pair_tca
 
@@ -68,11 +71,13 @@ def sample(rng):
 
 def develop(text, beta):
     """(None, checks) when the design is developed, else (the failure message, None). ``checks``: the largest
-    deviation (deg) of the four flanks' mean-point pressure and spiral angles from the design (20 deg, ``beta``), and
-    whether the TCA shows an edge contact (bearing off a flank) at some position."""
+    deviation (deg) of the four flanks' mean-point pressure and spiral angles from the design (20 deg, ``beta``),
+    whether the TCA shows an edge contact (bearing off a flank) at some position, and the TE level of each side
+    (arcsec): the level the default synthesis used (``synthesis.<side>.te_magnitude_arcsec``; lower than the design's
+    when it fell back, ``DEFAULT_TE_FALLBACK``) and the level the TCA shows (:func:`te_level`)."""
     spec = parse_design(text)
     blank = blank_from_design(spec)
-    setups = fm.setup_flanks(spec, blank)
+    setups, synth = fm.setup_flanks(spec, blank, with_synthesis=True)
     grids = {k: st.flank.grid(9, 5, curvature=False) for k, st in setups.items()}
     _, section, _ = run_pair_tca(blank, setups, grids, n_positions=21)
     for name in ("drive", "coast"):
@@ -86,13 +91,48 @@ def develop(text, beta):
     dev = max(max(abs(math.degrees(st.flank.mean_point().pressure_angle) - 20.0),
                   abs(math.degrees(st.flank.mean_point().spiral_angle) - beta)) for st in setups.values())
     edge = any(section[n]["edge_contact_positions_deg"] for n in ("drive", "coast"))
-    return None, (dev, edge)
+    z1 = spec.gear_set.pinion_teeth
+    levels = {n: (synth[n].summary()["te_magnitude_arcsec"], te_level(section[n], z1)) for n in ("drive", "coast")}
+    return None, (dev, edge, levels)
+
+
+def te_level(sec, z1):
+    """TE level (arcsec) of one side's TCA: the drop over half a mesh cycle of the least-squares parabola through
+    the TE within 0.4 of half a mesh cycle of the mean contact (as tests/cli/test_developed_pair.py); NaN with fewer
+    than three such positions."""
+    half = math.pi / z1
+    phi, te = np.radians(sec["pinion_rotation_deg"]), np.asarray(sec["transmission_error_arcsec"])
+    near = np.abs(phi) <= 0.4 * half
+    return float(-np.polyfit(phi[near], te[near], 2)[0] * half**2) if near.sum() >= 3 else float("nan")
+
+
+#: the TE-level check of the developed pair (issue acceptance): the design level (the default synthesis' 8 arcsec)
+#: used by the synthesis, and the TCA's level within 10 % of it
+DESIGN_TE_ARCSEC = DEFAULT_SYNTHESIS["te_magnitude"]
+TE_LEVEL_TOL = 0.10
+
+
+def failed_checks(checks):
+    """The checks a developed pair misses: angles (0.05 deg), bearing (edge contact), TE level (design level used,
+    TCA level within 10 %)."""
+    dev, edge, levels = checks
+    out = []
+    if dev > 0.05:
+        out.append(f"mean-point angles {dev:.3f} deg off")
+    if edge:
+        out.append("edge contact")
+    for name, (used, seen) in levels.items():
+        if abs(used - DESIGN_TE_ARCSEC) > 1e-6 * DESIGN_TE_ARCSEC:
+            out.append(f"{name} TE level reduced to {used:g} arcsec")
+        elif not abs(seen - DESIGN_TE_ARCSEC) <= TE_LEVEL_TOL * DESIGN_TE_ARCSEC:
+            out.append(f"{name} TCA TE level {seen:.2f} arcsec")
+    return out
 
 
 def main(n=40, seed=1, part=0, parts=1):
     rng = np.random.default_rng(seed)
     ok, reasons, crashes = 0, collections.Counter(), []
-    n_angles = n_inside = 0
+    n_angles = n_inside = n_level = n_all = 0
     t0, c0 = time.perf_counter(), time.process_time()
     n_run = 0
     for i in range(n):
@@ -110,14 +150,19 @@ def main(n=40, seed=1, part=0, parts=1):
         except Exception as err:  # noqa: BLE001 - a traceback is itself a finding of this bench
             why = f"UNCAUGHT {type(err).__name__}: {err}"
             crashes.append(label)
+        missed = [] if checks is None else failed_checks(checks)
         extra = "" if checks is None else (f", angles within {checks[0]:.3f} deg of the design"
-                                           f"{', edge contact' if checks[1] else ', bearing inside the flanks'}")
+                                           f"{', edge contact' if checks[1] else ', bearing inside the flanks'}"
+                                           ", TE level " + "/".join(f"{u:g}->{v:.2f}" for u, v in checks[2].values())
+                                           + (f"; MISSES: {', '.join(missed)}" if missed else "; every check met"))
         print(f"  {'developed' if why is None else 'NOT developed'} ({time.perf_counter() - t1:.1f} s): {label}{extra}",
               flush=True)
         if why is None:
             ok += 1
             n_angles += checks[0] <= 0.05
             n_inside += not checks[1]
+            n_level += not any("TE level" in m for m in missed)
+            n_all += not missed
         else:
             reasons[why.split(":")[0] + ": " + why.split(":", 1)[-1][:110]] += 1
             print(f"  not developed: {label}: {why[:200]}")
@@ -126,7 +171,11 @@ def main(n=40, seed=1, part=0, parts=1):
     print(f"developed {ok} of {n} designs ({100.0 * ok / n:.0f} %), {dt / n:.2f} s per design (wall), "
           f"{dc / n:.2f} s CPU per design")
     print(f"  of these: mean-point angles of all four flanks within 0.05 deg of the design: {n_angles}; bearing "
-          f"inside both flanks (no edge contact in the 21-position TCA of either side): {n_inside}")
+          f"inside both flanks (no edge contact in the 21-position TCA of either side): {n_inside}; TE level of both "
+          f"sides at the design's {DESIGN_TE_ARCSEC:g} arcsec (synthesized at it, TCA within "
+          f"{100 * TE_LEVEL_TOL:.0f} %): {n_level}")
+    print(f"meeting every check (developed, angles, bearing inside, TE level): {n_all} of {n} "
+          f"({100.0 * n_all / n:.0f} %)")
     for why, k in reasons.most_common():
         print(f"  {k:3d} x {why}")
     if crashes:

@@ -95,6 +95,13 @@ DEFAULT_PATH_DIRECTIONS = (0.0, -20.0, 20.0, -40.0, 40.0, -55.0, 55.0)
 #: runs onto the gear's top edge before the transfer point)
 DEFAULT_DEPTH_FRACTIONS = (0.0, 0.5)
 
+#: M below the pitch line turns the synthesized pinion's mean-point pressure angle off the design in proportion to
+#: the depth (the pinion is matched to the gear at M and crowned in profile relative to it: -0.035, -0.070,
+#: -0.117 deg at 0.6, 1.2, 2.0 mm on a 12/54 pinion at beta 4.9 deg): a depth candidate whose mean-point angles miss
+#: the check (``CHECK_ANGLE_DEG``) is synthesized once more with its depth scaled down to this fraction of the
+#: depth at which the deviation would reach the check
+DEFAULT_DEPTH_ANGLE_MARGIN = 0.8
+
 #: path directions (deg) turned farther toward the lengthwise direction, tried by the face-milled default after
 #: ``DEFAULT_PATH_DIRECTIONS`` at the mean pitch point: at a large spiral angle a path within 55 deg of the profile
 #: direction can reach the gear's top edge at one end of the mesh cycle and the pinion's fillet at the other, while
@@ -107,6 +114,16 @@ DEFAULT_CANDIDATES = tuple((eta, frac) for frac in DEFAULT_DEPTH_FRACTIONS
                            for eta in (DEFAULT_PATH_DIRECTIONS + DEFAULT_LENGTHWISE_DIRECTIONS if not frac
                                        else DEFAULT_PATH_DIRECTIONS[:3]))
 DEFAULT_MAX_SYNTHESES = 16
+
+#: when none of ``DEFAULT_CANDIDATES`` keeps the bearing inside both flanks, each path direction at the mean pitch
+#: point is synthesized again with the sets of solved settings not tried for it yet (``synthesis.free``: offset,
+#: modified roll, fixed blade), at most this many more syntheses per side: the seven mean-point conditions fix the
+#: pinion flank to second order at M, the set of free settings shapes it away from M, and with it where the contact
+#: runs near the ends of the mesh cycle (38/92 at beta 30.5 deg, coast: with the blank offset free every direction
+#: touches the pinion's fillet at 2 to 13 of 41 positions, with the modified roll free the path at -40 deg stays
+#: inside, bench/bench_robustness.py seed 2; 34/194 at beta 6.2 deg, seed 1: no pinion flank of the first set that
+#: converges covers the face at 8 arcsec, one of another set does, where the TE level was halved before)
+DEFAULT_OTHER_SET_SYNTHESES = 18
 
 #: TE levels (fractions of the default's) tried when no candidate at the default level gives a pinion flank that
 #: covers the face and meshes, with at most ``DEFAULT_FALLBACK_SYNTHESES`` syntheses each: a parabolic TE of a given
@@ -145,15 +162,18 @@ def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK
     return int(np.sum(~np.isfinite(res.te) | res.edge_contact))
 
 
-def _angles_hit(blank, flank) -> bool:
-    """True when the flank's mean-point pressure and spiral angles are within the developed-pair check
-    (``CHECK_ANGLE_DEG``) of the design."""
+def _angle_deviation(blank, flank) -> float:
+    """Largest deviation (rad) of the flank's mean-point pressure and spiral angles from the design."""
     from ..generation.basic_settings_solve import flank_fit
 
     f = flank_fit(blank, flank)
-    tol = math.radians(CHECK_ANGLE_DEG)
-    return (abs(f.pressure_angle - f.pressure_angle_design) <= tol
-            and abs(f.spiral_angle - f.spiral_angle_design) <= tol)
+    return max(abs(f.pressure_angle - f.pressure_angle_design), abs(f.spiral_angle - f.spiral_angle_design))
+
+
+def _angles_hit(blank, flank) -> bool:
+    """True when the flank's mean-point pressure and spiral angles are within the developed-pair check
+    (``CHECK_ANGLE_DEG``) of the design."""
+    return _angle_deviation(blank, flank) <= math.radians(CHECK_ANGLE_DEG)
 
 
 def _default_spec_class():
@@ -249,7 +269,8 @@ def _synthesize_sides(sy, blank, setups, syn, refit=None):
         for k_level, te in enumerate(levels):
             best, tried, last = _candidates(sy, blank, gear, pin, s1, te, syn, default,
                                             DEFAULT_MAX_SYNTHESES if k_level == 0 else DEFAULT_FALLBACK_SYNTHESES,
-                                            refit.get(s1, False))
+                                            refit.get(s1, False),
+                                            DEFAULT_OTHER_SET_SYNTHESES if k_level == 0 else DEFAULT_FALLBACK_SYNTHESES)
             # a lower level only when this one reached the geometry but no flank covered the face and meshed
             if best is None or not default or best[0] < _CHECK_POSITIONS:
                 break
@@ -275,6 +296,13 @@ def _synthesize_sides(sy, blank, setups, syn, refit=None):
                                    "gear_set.cutter_radius or gear_set.mean_spiral_angle", tried, float("inf"), None)
         _, res, free = best
         source = f"local synthesis ({name} side, free = {free})"
+        if k_level:   # a reduced TE level is not the design's: say so (the TCA's TE check compares with the level used)
+            source += f"; parabolic TE level reduced to {levels[-1]:g} arcsec (design {sy.te_magnitude:g} arcsec)"
+            warnings.warn(f"{name} side: the default synthesis found no pinion flank that covers the face and meshes "
+                          f"at the design TE level {sy.te_magnitude:g} arcsec and developed the pair at "
+                          f"{levels[-1]:g} arcsec (synthesis.{name}.te_magnitude_arcsec); give a [synthesis] section "
+                          "(synthesis.te_magnitude, synthesis.path_direction, synthesis.semi_major_axis) or change "
+                          "gear_set.cutter_radius or gear_set.mean_spiral_angle", DesignWarning, stacklevel=2)
         if res.pinion_cutter.point_width < pin.cutter.point_width - 1e-9:   # gearset/pinion_fillet.lower_root
             source += (f"; root lowered onto the root cone: blade extended to a point width of "
                        f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
@@ -305,11 +333,17 @@ def _require_near_branch(res, pin):
                                iterations=res.iterations, residual=res.residual, last=None)
 
 
-def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit=False):
+def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit=False, max_other=0):
     """The local syntheses of one pinion side at the TE level ``te`` (arcsec): the design file's path direction, or
     for the default synthesis the first of ``DEFAULT_CANDIDATES`` whose pair keeps the bearing inside both flanks
     over the whole mesh cycle (TCA: real contact, no edge, at every position); if none does, the one with the fewest
     positions off the flank. At most ``max_syntheses`` syntheses (failed ones included) for the default.
+
+    A default depth candidate (M below the pitch line) whose pinion misses the mean-point angle check is synthesized
+    once more at its depth scaled to ``DEFAULT_DEPTH_ANGLE_MARGIN`` of the depth at which it would reach the check
+    (the deviation is proportional to the depth). When still no candidate keeps the bearing inside, each path
+    direction at the pitch point is synthesized with the sets of solved settings not tried for it yet, at most
+    ``max_other`` more syntheses (``DEFAULT_OTHER_SET_SYNTHESES``).
 
     With ``refit``, a default candidate whose bearing leaves the flanks at some position gets its pinion's root put
     back on the root cone (:func:`~spiralbevel.gearset.pinion_fillet.lower_root`) and its derived edge radius
@@ -327,6 +361,41 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
     cands = DEFAULT_CANDIDATES if default else ((sy.path_direction, 0.0),)
     mid = 0.5 * (float(blank.ham1) - float(blank.ham2))     # middle of the working depth below the pitch line
     best, spare, tried, last = None, None, 0, None
+    done = set()    # (path direction, depth fraction, set name) synthesized, converged or not
+
+    def synthesize(eta, frac, free):
+        nonlocal tried
+        tried += 1
+        done.add((eta, frac, free))
+        res = syn.synthesize_pinion(
+            gear.cutter, gear.settings, blank, side=s1, eta=math.radians(eta),
+            semi_major_axis=sy.semi_major_axis, te_magnitude=te * ARCSEC,
+            approach=sy.approach, free=getattr(syn, _FREE[free]), depth=frac * mid,
+            pinion_cutter_hint=pin.cutter if hint else None,
+            pinion_settings_hint=pin.settings if hint else None)
+        if default:
+            _require_near_branch(res, pin)
+        return res
+
+    def judge(res, frac, free):
+        """Positions off the flanks of a default candidate (after the fillet retry), kept as best or spare."""
+        nonlocal best, spare
+        off = bearing_off_flank(blank, res.pinion_flank, gear.flank)
+        if refit and 0 < off < _CHECK_POSITIONS:   # an edge contact: the root back on the root cone, a smaller
+            res2 = fit_pinion_edge_radius(blank, lower_root(blank, res))    # fillet; kept if it helps
+            off2 = off if res2 is res else bearing_off_flank(blank, res2.pinion_flank, gear.flank)
+            if off2 < off:
+                res, off = res2, off2
+        # M off the pitch point moves the pinion's mean-point angles off the design (by a few 0.01 deg): such a
+        # candidate is taken only when it keeps the bearing inside the flanks and the angles within the check
+        if frac and off == 0 and not _angles_hit(blank, res.pinion_flank):
+            off = _CHECK_POSITIONS
+        if (best is None or off < best[0]) and (off == 0 or not frac):
+            best = (off, res, free)
+        elif spare is None or off < spare[0]:
+            spare = (off, res, free)
+        return off
+
     for eta, frac in cands:
         if frac and not mid:
             continue
@@ -334,16 +403,8 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
         for k, free in enumerate(names):
             if default and tried >= max_syntheses:
                 break
-            tried += 1
             try:
-                res = syn.synthesize_pinion(
-                    gear.cutter, gear.settings, blank, side=s1, eta=math.radians(eta),
-                    semi_major_axis=sy.semi_major_axis, te_magnitude=te * ARCSEC,
-                    approach=sy.approach, free=getattr(syn, _FREE[free]), depth=frac * mid,
-                    pinion_cutter_hint=pin.cutter if hint else None,
-                    pinion_settings_hint=pin.settings if hint else None)
-                if default:
-                    _require_near_branch(res, pin)
+                res = synthesize(eta, frac, free)
                 break
             except (ConvergenceError, GeometryError) as err:
                 # the default tries the next set of settings, then the next candidate; a given
@@ -360,22 +421,36 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
         names = [free] + [f for f in names if f != free]     # the set that worked first for the next candidates
         if not default:
             return (0, res, free), tried, last
-        off = bearing_off_flank(blank, res.pinion_flank, gear.flank)
-        if refit and 0 < off < _CHECK_POSITIONS:   # an edge contact: the root back on the root cone, a smaller
-            res2 = fit_pinion_edge_radius(blank, lower_root(blank, res))    # fillet; kept if it helps
-            off2 = off if res2 is res else bearing_off_flank(blank, res2.pinion_flank, gear.flank)
-            if off2 < off:
-                res, off = res2, off2
-        # M off the pitch point moves the pinion's mean-point angles off the design (by a few 0.01 deg): such a
-        # candidate is taken only when it keeps the bearing inside the flanks and the angles within the check
-        if frac and off == 0 and not _angles_hit(blank, res.pinion_flank):
-            off = _CHECK_POSITIONS
-        if (best is None or off < best[0]) and (off == 0 or not frac):
-            best = (off, res, free)
-        elif spare is None or off < spare[0]:
-            spare = (off, res, free)
-        if off == 0 or tried >= max_syntheses:
+        if frac:   # M as deep as the mean-point check allows (DEFAULT_DEPTH_ANGLE_MARGIN)
+            try:
+                dev = _angle_deviation(blank, res.pinion_flank)
+            except (ConvergenceError, GeometryError):
+                dev = 0.0
+            if dev > math.radians(CHECK_ANGLE_DEG):
+                frac *= DEFAULT_DEPTH_ANGLE_MARGIN * math.radians(CHECK_ANGLE_DEG) / dev
+                try:
+                    res = synthesize(eta, frac, free)
+                except (ConvergenceError, GeometryError) as err:
+                    last = err
+                    continue
+        if judge(res, frac, free) == 0 or tried >= max_syntheses:
             break
+    if default and (best is not None or spare is not None) and (best is None or best[0] > 0):
+        # no candidate kept the bearing inside: the other sets of solved settings at the mean pitch point
+        # (DEFAULT_OTHER_SET_SYNTHESES); a local synthesis fixes the pinion to second order at M only, and the free
+        # settings shape the rest of its flank, which decides where the contact runs at the ends of the mesh cycle
+        budget = tried + max_other
+        for eta in _ALL_DIRECTIONS:
+            for free in names:
+                if (eta, 0.0, free) in done or tried >= budget:
+                    continue
+                try:
+                    res = synthesize(eta, 0.0, free)
+                except (ConvergenceError, GeometryError) as err:
+                    last = err
+                    continue
+                if judge(res, 0.0, free) == 0:
+                    return best, tried, last
     return (best if best is not None else spare), tried, last
 
 
