@@ -145,7 +145,7 @@ def _profile(prm, u):
     return prm[_RC] - rp * s * math.sin(chi), prm[_ZC] - rp * math.cos(chi), chi, -1.0 / rp
 
 
-@kernel(inline="always")
+@kernel   # not inlined: called twice per jet (compile-time rule of _core/jit.py)
 def _meshing(prm, u, c, sn, sb, cb, S, SOz, Ox, wx, wy, wz):
     """Profile at u and the equation of meshing f = P cos(phi) + Q sin(phi) + R with f_u
     (``generation_blade._terms``)."""
@@ -164,7 +164,7 @@ def _meshing(prm, u, c, sn, sb, cb, S, SOz, Ox, wx, wy, wz):
     return rho, z, dchi, nr, nc, nz, h, P, Q, P * c + Q * sn + R, P_u * c + Q_u * sn + R_u
 
 
-@kernel(inline="always")
+@kernel   # not inlined: three kernels call it (compile-time rule of _core/jit.py)
 def blade_jet_u(prm, phi, psi, out):
     """Jet at one point (phi, psi_c) rad into ``out (3, 6)`` (see module); returns the blade parameter u (mm) and its
     derivatives (u_phi, u_psi) (mm/rad; NaN where the chart is singular): the fillet junction u = u_j is a flank

@@ -15,6 +15,34 @@ systems, surface jets at single points) where numpy spends most of its time in c
 plain loops to machine code with the same IEEE arithmetic, ships wheels for every platform the project supports, and
 is imported only by the modules that hold compiled kernels (not by the CLI's start-up path). Costs and
 figures: README, "Performance".
+
+Compile time. A first run after an install (or after any change of ``_core``) compiles every kernel it reaches
+(later runs read the machine code from the cache above); for the CMC example that is most of its cold time.
+``bench/bench_compile.py`` lists the compile time of every kernel and numba implementation a job pulls in, and the
+signatures of anything compiled twice. What it showed (numba 0.68, CPU seconds on the project machine) gives the
+rules for kernels:
+
+* numba's Python front end (typing, rewrites, lowering to LLVM IR) is half or more of the cost, LLVM the rest,
+  roughly in proportion to the number of statements typed: a big kernel costs about 1 s, a small helper 0.1-0.3 s;
+  a kernel called from other kernels is compiled once per signature, not once per caller.
+* ``inline="always"`` re-types (and deep-copies the IR of) the callee in every caller: keep it for small helpers
+  called from one place. The face-milled jet ``blade_jet_u`` inlined into three kernels (and ``_meshing`` twice into
+  it) cost 3-4 s more than compiling it once and calling it; LLVM still inlines small callees at machine level.
+* One signature per kernel. Each distinct argument type compiles the whole call tree again: a literal argument
+  (``f(x, True)`` from kernel code types as ``Literal[bool](True)``, ``-1`` as ``Literal[int](-1)``), a read-only
+  array (``np.broadcast_to`` views, ``setflags(write=False)``) against a writable one, layout ``A`` (a non-contiguous
+  slice) against ``C``, int against float, a different dtype spelling of ``np.empty`` (``float``, ``np.float64``,
+  none). Pass flags and indices as values read from an array or computed, hand kernels writable C-contiguous float64
+  arrays (``np.array(..., float)`` copies when in doubt).
+* numpy conveniences inside kernels pull in numba's generic implementations, each compiled once per process and
+  signature, several with error-message formatting: an array-to-array set-item (``a[i] = b``, ``a[:, :] = B``: the
+  broadcast check with its message, about 1.5 s per dimension count), ``a[:] = v``, ``np.max(np.abs(f))``,
+  ``np.all(np.isfinite(J))`` and above all ``np.linalg`` (``lstsq``: about 2 s). A ``for`` loop over the few
+  entries of a kernel's small arrays costs nothing to compile; a rarely taken LAPACK branch can call back into
+  Python (``numba.objmode``, see ``settings_fit._lstsq``).
+* Leaving out the CPython and cfunc wrappers of callee-only kernels saved about 3 %; the optimisation level
+  ``NUMBA_OPT=1`` about 15 % (it is global to a process, so it would change a user's own numba code too): both left
+  at numba's defaults.
 """
 
 from __future__ import annotations

@@ -1,7 +1,10 @@
-"""Small dense linear solves inside compiled kernels.
+"""Small dense linear solves and copies inside compiled kernels.
 
 One Gaussian elimination with partial pivoting serves the compiled Newton iterations of the settings fit
-(``settings_fit``, 7 x 7) and of multi-point control (``multipoint_newton``, 6 x 6).
+(``settings_fit``, 7 x 7) and of multi-point control (``multipoint_newton``, 6 x 6). :func:`copy1` and :func:`copy2`
+copy a row or a block between arrays of the same shape: ``dst[i] = src[t]`` between arrays would compile numba's
+broadcasting set-item with its shape-mismatch message, about 1.5 s per number of dimensions on a cold start (see
+``_core/jit.py``).
 """
 
 from __future__ import annotations
@@ -52,3 +55,18 @@ def lu_solve(J, b, dx):
             s -= J[i, j] * dx[j]
         dx[i] = s / J[i, i]
     return True
+
+
+@kernel
+def copy1(dst, src):
+    """dst[:] = src for (n,) arrays of the same length (a loop: see the module docstring)."""
+    for i in range(dst.shape[0]):
+        dst[i] = src[i]
+
+
+@kernel
+def copy2(dst, src):
+    """dst[:, :] = src for (n, k) arrays of the same shape (a loop: see the module docstring)."""
+    for i in range(dst.shape[0]):
+        for j in range(dst.shape[1]):
+            dst[i, j] = src[i, j]

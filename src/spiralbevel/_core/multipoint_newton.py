@@ -246,6 +246,8 @@ def march(prm1, prm2, z0, xs, c, max_step, tol, max_iter):
     count = np.zeros(ns, np.int64)
     p1 = prm1.copy()
     y = np.empty(6)
+    mean = np.zeros(1, np.bool_)   # the mean equation as a bool read from an array: a literal True would compile
+    mean[0] = True                 # _newton and _system a second time (for Literal[bool](True))
     for s in range(ns):
         for k in range(n):
             for i in range(6):
@@ -255,8 +257,9 @@ def march(prm1, prm2, z0, xs, c, max_step, tol, max_iter):
                     y[i] = 2 * z[s, 0, i] - z0[i]
                 else:
                     y[i] = 2 * z[s, k - 1, i] - z[s, k - 2, i]
-            ok, r, it = _newton(p1, prm2, y, xs[s, k], 0.0, 0.0, True, c, max_step, tol, max_iter, u[s, k])
-            z[s, k] = y
+            ok, r, it = _newton(p1, prm2, y, xs[s, k], 0.0, 0.0, mean[0], c, max_step, tol, max_iter, u[s, k])
+            for i in range(6):   # a loop: an array-to-array set-item compiles numba's broadcasting checks
+                z[s, k, i] = y[i]
             if not ok:
                 break
             count[s] = k + 1

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 
 from .generation_blade_jet import (_CHI0, _E, _G, _HEAD, _M, _Q, _RC, _RH, _RP, _S, _UJ, _UP, _XB, _XD, _ZC,
@@ -42,9 +43,43 @@ CODES = dict(point_radius=0, blade_angle=1, radial_setting=2, cradle_angle=3, ma
 
 
 @kernel
+def _fill(a, v):
+    """Every entry of ``a (n,)`` set to ``v`` (a loop: ``a[:] = v`` compiles numba's broadcasting set-item)."""
+    for i in range(a.size):
+        a[i] = v
+
+
+@kernel
+def _max_abs(f):
+    """max |f_i| of ``f (n,)``, NaN if any entry is NaN (as ``np.max(np.abs(f))``)."""
+    m = 0.0
+    for i in range(f.size):
+        a = abs(f[i])
+        if math.isnan(a):
+            return a
+        m = max(m, a)
+    return m
+
+
+def _lstsq_py(J, f):
+    return np.linalg.lstsq(J, -f, rcond=-1)[0]   # rcond=-1: machine precision, as numba's compiled lstsq had it
+
+
+@kernel(nogil=False)   # it takes the GIL for the call-back (numba warns about nogil with object mode)
+def _lstsq(J, f, dx):
+    """dx = the least-squares solution of J dx = -f (``np.linalg.lstsq``) for a singular J: called back in Python
+    (numba's compiled lstsq costs about 2 s of compile time for a branch that almost never runs)."""
+    with numba.objmode(r="float64[:]"):
+        r = _lstsq_py(J, f)
+    for i in range(dx.size):
+        dx[i] = r[i]
+
+
+@kernel
 def _set(prm0, cut, codes, x, prm):
     """Copy ``prm0`` into ``prm`` with the unknowns ``x[:6]`` set; False where the cutter or settings are invalid."""
-    prm[:] = prm0
+    for i in range(prm0.size):
+        prm[i] = prm0[i]
     Rh, alpha = prm0[_RH], 0.5 * math.pi - prm0[_CHI0]
     for k in range(6):
         c, v = codes[k], x[k]
@@ -143,14 +178,14 @@ def _point_invariants(jet, out):
 def invariants(prm0, cut, codes, x, out):
     """Invariants (7,) of the generated point of the unknowns ``x (7,)`` into ``out``; returns (valid, n_t, u): the
     tangential normal component n_t and the blade parameter u (mm) of the point (NaN where not valid)."""
-    prm = np.empty_like(prm0)
+    prm = np.empty(prm0.size)
     jet = np.empty((3, 6))
     if not _set(prm0, cut, codes, x, prm) or not math.isfinite(x[6]):
-        out[:] = math.nan
+        _fill(out, math.nan)
         return False, math.nan, math.nan
     u = blade_jet_u(prm, x[6] + math.pi - prm[_Q], 0.0, jet)[0]
     if not math.isfinite(u):
-        out[:] = math.nan
+        _fill(out, math.nan)
         return False, math.nan, math.nan
     nt = _point_invariants(jet, out)
     for i in range(7):
@@ -164,7 +199,7 @@ def residual(prm0, cut, codes, x, goal, w, f):
     """(invariants(x) - goal) w into ``f (7,)``; every entry ``BAD`` where the point is not valid."""
     ok = invariants(prm0, cut, codes, x, f)
     if not ok[0]:
-        f[:] = BAD
+        _fill(f, BAD)
         return
     for i in range(7):
         f[i] = (f[i] - goal[i]) * w[i]
@@ -194,18 +229,22 @@ def newton(prm0, cut, codes, x0, goal, w, max_step, tol, max_iter, rel_step):
     f = np.empty(7)
     J, A, b, dx = np.empty((7, 7)), np.empty((7, 7)), np.empty(7), np.empty(7)
     residual(prm0, cut, codes, x, goal, w, f)
-    res = np.max(np.abs(f))
+    res = _max_abs(f)
     it = 0
     while not res < tol and it < max_iter:
         it += 1
         jacobian(prm0, cut, codes, x, goal, w, rel_step, J)
-        A[:, :] = J
-        b[:] = -f
+        finite = True
+        for j in range(7):
+            b[j] = -f[j]
+            for k in range(7):
+                A[j, k] = J[j, k]
+                finite = finite and math.isfinite(J[j, k])
         if not lu_solve(A, b, dx):
-            if np.all(np.isfinite(J)):
-                dx[:] = np.linalg.lstsq(J, -f)[0]
+            if finite:
+                _lstsq(J, f, dx)
             else:
-                dx[:] = 0.0
+                _fill(dx, 0.0)
         scale = 1.0
         for j in range(7):
             if not math.isfinite(dx[j]):
@@ -214,5 +253,5 @@ def newton(prm0, cut, codes, x0, goal, w, max_step, tol, max_iter, rel_step):
         for j in range(7):
             x[j] += dx[j] / scale
         residual(prm0, cut, codes, x, goal, w, f)
-        res = np.max(np.abs(f))
+        res = _max_abs(f)
     return x, res < tol, it, res

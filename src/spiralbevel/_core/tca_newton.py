@@ -34,6 +34,7 @@ import numpy as np
 
 from .jets import surface_jet
 from .jit import kernel
+from .linalg import copy1, copy2
 
 __all__ = [
     "assemble",
@@ -355,9 +356,9 @@ def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, to
             acc[t] = False
             continue
         acc[t] = True
-        x[i] = xn[t]
-        F[i] = Fn[t]
-        J[i] = Jn[t]
+        copy1(x[i], xn[t])   # copies by loops, not x[i] = xn[t]: compile time (_core/jit.py)
+        copy1(F[i], Fn[t])
+        copy2(J[i], Jn[t])
         halved[i] = 0
         r = _max_abs(Fn[t]) if fin else math.inf
         res[i] = r
@@ -441,10 +442,10 @@ def newton_jets(kind1, p1, kind2, p2, c1, s1, x0, E, have_E, d, M2, L, aj, aval,
         for t in range(c):
             if acc[t]:
                 i = idx[t]
-                S1[i] = T1[t]
-                S2[i] = T2[t]
-                S1f[i] = T1f[t]
-                Q[i] = TQ[t]
+                copy2(S1[i], T1[t])   # copies by loops, not S1[i] = T1[t]: compile time (_core/jit.py)
+                copy2(S2[i], T2[t])
+                copy2(S1f[i], T1f[t])
+                copy2(Q[i], TQ[t])
     return x, F, J, res, S1, S2, S1f, Q, it
 
 

@@ -120,8 +120,9 @@ class BladeLocator:
         a, r = np.ascontiguousarray(axial.ravel()), np.ascontiguousarray(radius.ravel())
 
         def solver(x0):     # compiled Newton, analytic Jacobian of the jet (_core/blade_locate.py)
+            # np.array: a writable copy; a read-only start (from broadcast_to) would compile the kernel a second time
             x, u, conv, _ = blade_locate.locate_axial_radius(
-                prm, np.ascontiguousarray(np.broadcast_to(x0, axial.shape + (2,)).reshape(-1, 2), float), a, r,
+                prm, np.array(np.broadcast_to(x0, axial.shape + (2,)).reshape(-1, 2), float), a, r,
                 TOL.newton_abs * 10, TOL.max_iter, _MAX_STEP)
             return x.reshape(axial.shape + (2,)), conv.reshape(axial.shape), u.reshape(axial.shape)
 

@@ -115,3 +115,22 @@ def test_control_point_beyond_the_blades_is_refused(synth_pos):
     with pytest.raises(DesignError, match="control_points"):
         multipoint_control(synth_pos, seed001_cmc(3 * ARCSEC, 23), [beyond, lo / 2, hi / 2],
                            interpolation="spline")
+
+
+def test_one_compiled_newton_for_march_and_control_points(synth_pos, system):
+    """The march (mean equation, a constant flag) and the control-point solves (flags from an array), with one or
+    several systems and scalar or array arguments, run the same compiled Newton: one signature each (a second one,
+    e.g. for a literal True or a read-only array, costs seconds of compile time on a first run; ``_core/jit.py``)."""
+    from spiralbevel._core import multipoint_newton as mpn
+
+    T = 2 * math.pi / system.kin.z1
+    system.march(np.array([np.linspace(T / 24, T / 8, 3), -np.linspace(T / 24, T / 8, 3)]))
+    y0 = system.start()
+    system.solve(y0, 0.0, 0.0, 0.0, synth_pos.phi2_mean, True)
+    system.solve(np.tile(y0, (2, 1)), np.zeros(2), np.zeros(2), np.zeros(2), synth_pos.phi2_mean, [False, True])
+    for k in (mpn.solve_systems, mpn.march):
+        assert len(k.signatures) == 1, (k.py_func.__name__, k.signatures)
+    # the callees are compiled (and listed) only when their callers are compiled, not when those are read from the
+    # kernel cache: at most one signature (a changed _core source always compiles afresh, so a second one shows there)
+    for k in (mpn._newton, mpn._system):
+        assert len(k.signatures) <= 1, (k.py_func.__name__, k.signatures)

@@ -138,3 +138,18 @@ def test_fit_matches_scipy_root_on_the_numpy_residual():
         np.testing.assert_allclose(_wrap(x_fit - ref.x), 0.0, rtol=0, atol=1e-7)
         np.testing.assert_allclose(_wrap(x_fit - x_true), 0.0, rtol=0, atol=1e-7)
         assert u == pytest.approx(float(fp.u), abs=1e-7)
+
+
+def test_singular_step_is_the_least_squares_step():
+    """The Newton's fallback for a singular 7 x 7 Jacobian (``_lstsq``, a call back into numpy's LAPACK solver) gives
+    the minimum-norm least-squares step, checked against the SVD pseudo-inverse, on rank-deficient matrices."""
+    rng = np.random.default_rng(7)
+    for rank in (3, 5, 6):
+        J = rng.standard_normal((7, rank)) @ rng.standard_normal((rank, 7))
+        f = rng.standard_normal(7)
+        dx = np.full(7, np.nan)
+        sf._lstsq(J, f, dx)
+        ref = -np.linalg.pinv(J) @ f
+        # two SVD-based solvers differ by rounding: up to 8e-16 relative here (a few eps times the condition number of
+        # J on its range)
+        assert np.max(np.abs(dx - ref)) < 1e-14 * np.max(np.abs(ref)), rank

@@ -128,8 +128,8 @@ class MultiPointSystem:
         from ..._core.multipoint_newton import solve_systems
 
         m = len(np.atleast_1d(x))
-        def vec(v, dt=float):
-            return np.ascontiguousarray(np.broadcast_to(np.asarray(v, dt), (m,)))
+        def vec(v, dt=float):   # a writable copy: a read-only view would compile the kernel a second time
+            return np.array(np.broadcast_to(np.asarray(v, dt), (m,)))
 
         z, u, conv, res, its = solve_systems(
             *self._jets, np.ascontiguousarray(np.asarray(y0, float).reshape(m, 6)), vec(x), vec(target),
