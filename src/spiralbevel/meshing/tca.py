@@ -36,6 +36,7 @@ import numpy as np
 
 from .._core import tca as _k
 from .._core import tca_batch as _b
+from .._core import tca_ellipse as _e
 from ..errors import DesignError, NoContactError, Problem
 from .contact_problem import ContactProblem
 from .contact_surface import surface_contains, surface_derivatives
@@ -383,20 +384,16 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     # ellipses at the selected contacts
     flat = np.arange(n) * P + np.maximum(sel, 0)
     nocon_or_edge = ~anyv | edge_pos
-    # positions without contact may carry no surface data (unsolved systems): a flat dummy keeps LAPACK off NaN
-    dummy = np.array([[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]])
-    nc = ~anyv[:, None, None]
-    dr1s, dn1s = np.where(nc, dummy, dr1[flat]), np.where(nc, 0.0, dn1[flat])
-    dr2s, dn2s = np.where(nc, dummy, dr2[flat]), np.where(nc, 0.0, dn2[flat])
-    R1s, R2s = np.where(nc, np.eye(3), R1[flat]), np.where(nc, np.eye(3), R2[flat])
-    W1 = R1s @ _k.weingarten(dr1s, dn1s) @ np.swapaxes(R1s, -1, -2)
-    W2 = R2s @ _k.weingarten(dr2s, dn2s) @ np.swapaxes(R2s, -1, -2)
-    with np.errstate(all="ignore"):
-        lam, dirs = _k.relative_curvature(W1, W2, np.where(nc[..., 0], (0.0, 0.0, 1.0), n1f[flat]))
-        axes_ = _k.ellipse_axes(lam, approach)
+    # (positions without contact may carry no surface data, NaN: their ellipses are NaN, set below anyway)
+    lam, dirs = np.empty((n, 2)), np.empty((n, 2, 3))
+    R1s, R2s = np.ascontiguousarray(R1[flat]), np.ascontiguousarray(R2[flat])
+    _e.ellipse_batch(np.ascontiguousarray(dr1[flat]), np.ascontiguousarray(dn1[flat]), R1s,
+                     np.ascontiguousarray(dr2[flat]), np.ascontiguousarray(dn2[flat]), R2s,
+                     np.ascontiguousarray(n1f[flat]), lam, dirs)
+    axes_ = _k.ellipse_axes(lam, approach)
     axes_ = np.where((status == ContactStatus.LINE)[:, None], np.inf, axes_)
-    dirs1 = np.einsum("mji,mkj->mki", R1[flat], dirs)
-    dirs2 = np.einsum("mji,mkj->mki", R2[flat], dirs)
+    dirs1 = np.einsum("mji,mkj->mki", R1s, dirs)
+    dirs2 = np.einsum("mji,mkj->mki", R2s, dirs)
     for arr in (lam, axes_, dirs1, dirs2):
         arr[nocon_or_edge] = np.nan
     # transfer points: where the pair in contact changes, at the exact crossing of the two pairs' TE curves

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .tca_edge_solve import _all_margins, corner_index, corner_split, solve_edge_contacts
+from .tca_edge_solve import corner_index, corner_split, margins_of, solve_edge_contacts
 
 __all__ = ["solve_edge_contacts", "edge_stage", "corner_split", "corner_index"]
 
@@ -119,7 +119,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         phi_eff = phi1[ii] + pairs[jj] * T1
         xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
         tolm = 1e-9
-        gg = [_all_margins(surfs[m], xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
+        gg = [margins_of(prob, m, xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
         ok = conv.copy()
         # held[a, m, e]: system a holds its point of member m on boundary e (that margin is 0 by construction)
         corner, ma, ea, mb, eb = corner_split(prob, mem, ee)
@@ -203,7 +203,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     mate = {"top": ("fillet", "root"), "fillet": ("top",), "root": ("top",)}
     I, Jp, M, E = [], [], [], []
     if ii.size:
-        g = [_all_margins(surfs[0], x[ii, jj, 0:2]), _all_margins(surfs[1], x[ii, jj, 2:4])]
+        g = [margins_of(prob, 0, x[ii, jj, 0:2]), margins_of(prob, 1, x[ii, jj, 2:4])]
         for a in range(ii.size):
             want = set()
             for m in (0, 1):
@@ -231,7 +231,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     g_phys = [np.full((n, P, len(names[m])), np.nan) for m in (0, 1)]
     if near.any():
         for m in (0, 1):
-            g_phys[m][near] = _all_margins(surfs[m], x[near][:, 2 * m:2 * m + 2])
+            g_phys[m][near] = margins_of(prob, m, x[near][:, 2 * m:2 * m + 2])
     dd, ii, jj = np.nonzero(lost)
     for i, j, d in sorted(zip(ii.tolist(), jj.tolist(), (2 * dd - 1).tolist())):  # the order of (i, j, d)
         k = i + d
