@@ -98,14 +98,19 @@ def _predict(o, nodes, X, Xp):
 def _quintic(o_nodes, X, Xp, o):
     """Polynomial of degree 5 through three nodes with values and slopes, evaluated (extrapolated) at ``o (k,)``."""
     o_nodes = np.asarray(o_nodes, float)
-    c = o_nodes.mean()
-    s = np.ptp(o_nodes) or 1.0
+    on = o_nodes.tolist()
+    c = sum(on) / len(on)
+    s = (max(on) - min(on)) or 1.0
     t = (o_nodes - c) / s
-    p = np.arange(6)
-    A = np.concatenate([t[:, None] ** p, (p * t[:, None] ** np.maximum(p - 1, 0)) / s], 0)  # (6, 6)
+    A = np.concatenate([t[:, None] ** _P, (_P * t[:, None] ** _PM1) / s], 0)  # (6, 6)
     coef = np.linalg.solve(A, np.concatenate([X, Xp], 0))  # (6, 5)
     tt = (np.asarray(o, float) - c) / s
-    return (tt[:, None] ** p) @ coef
+    return (tt[:, None] ** _P) @ coef
+
+
+#: powers of the quintic and of its derivative
+_P = np.arange(6)
+_PM1 = np.maximum(_P - 1, 0)
 
 
 def _continuation(prob, x_mean, xp0, phi1_mean, o_lo, o_hi, step, tol):
@@ -147,11 +152,12 @@ def _continuation(prob, x_mean, xp0, phi1_mean, o_lo, o_hi, step, tol):
         # mean the path has ended there
         x, conv, _, J, data, _, E = prob.newton(phi, np.array(guesses), tol=tol, patience=2)
         tang = prob.path_tangent(J, data[2], E)
+        good = (conv & np.isfinite(tang).all(axis=1)).tolist()
         for d in (1, -1):
             if not alive[d]:
                 continue
             for m in np.nonzero(np.sign(idx) == d)[0][np.argsort(np.abs(idx[np.sign(idx) == d]))]:
-                if not conv[m] or not np.all(np.isfinite(tang[m])):
+                if not good[m]:
                     alive[d] = False
                     fail[d] = float(idx[m] * step)
                     break
@@ -273,7 +279,7 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         raise NoContactError(f"no contact at the mean position phi1 = {phi1_mean:.6g} rad "
                              f"(residual {res[0]:.3e} mm, n1.n2 = {n1f @ n2f:.3f})")
     phi2_mean = float(xm[4])
-    drive = 1 if np.cross(prob.axes[0], r1f) @ n1f > 0 else -1
+    drive = 1 if _k.cross(prob.axes[0], r1f) @ n1f > 0 else -1
     # ---------------------------------------------------------------- 2. continuation nodes
     phi1 = phi1_mean + np.linspace(-T / 2, T / 2, n_positions)
     off = (phi1 - phi1_mean)[:, None] + pairs[None, :] * T  # effective offsets (n, P)

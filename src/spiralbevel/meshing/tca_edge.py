@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .tca_edge_solve import corner_index, corner_split, margins_of, solve_edge_contacts
+from .tca_edge_solve import _all_margins, corner_index, corner_split, margins_of, solve_edge_contacts  # noqa: F401
 
 __all__ = ["solve_edge_contacts", "edge_stage", "corner_split", "corner_index"]
 
@@ -201,25 +201,27 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     best_other = _best_of_others(te_phys)
     ii, jj = np.nonzero((status == 2) & ~(te_surface < best_other - te_tie))  # ContactStatus.EDGE
     mate = {"top": ("fillet", "root"), "fillet": ("top",), "root": ("top",)}
-    I, Jp, M, E = [], [], [], []
     if ii.size:
-        g = [margins_of(prob, 0, x[ii, jj, 0:2]), margins_of(prob, 1, x[ii, jj, 2:4])]
-        for a in range(ii.size):
-            want = set()
-            for m in (0, 1):
-                for e in np.flatnonzero(~(g[m][a] >= 0)):
-                    nm = names[m][e]
-                    if nm == "generated":
-                        continue
-                    want.add((m, int(e)))
-                    for other in mate.get(nm, ()):
-                        if other in names[1 - m]:
-                            want.add((1 - m, names[1 - m].index(other)))
-            for m, e in sorted(want):
-                I.append(ii[a]), Jp.append(jj[a]), M.append(m), E.append(e)
-    if I:
-        I, Jp, M, E = (np.array(v, int) for v in (I, Jp, M, E))
-        try_solve(I, Jp, M, E, x[I, Jp])
+        kmax = max(len(names[0]), len(names[1]))
+        # crossed[a, m, e]: candidate a's point of member m lies beyond boundary e of m (or off the surface: NaN)
+        crossed = np.zeros((ii.size, 2, kmax), bool)
+        for m in (0, 1):
+            crossed[:, m, :len(names[m])] = ~(margins_of(prob, m, x[ii, jj, 2 * m:2 * m + 2]) >= 0)
+        # link[m, e, m', e']: crossing boundary e of m asks for the edge system of e' of m': e itself (but the end of
+        # the generated surface) and the boundary of the other member that meets it
+        link = np.zeros((2, kmax, 2, kmax), bool)
+        for m in (0, 1):
+            for e, nm in enumerate(names[m]):
+                if nm == "generated":
+                    continue
+                link[m, e, m, e] = True
+                for other in mate.get(nm, ()):
+                    if other in names[1 - m]:
+                        link[m, e, 1 - m, names[1 - m].index(other)] = True
+        want = (crossed.reshape(ii.size, -1).astype(np.int64) @ link.reshape(2 * kmax, -1).astype(np.int64)) > 0
+        a, M, E = np.nonzero(want.reshape(ii.size, 2, kmax))  # in the order (candidate, member, boundary)
+        if a.size:
+            try_solve(ii[a], jj[a], M, E, x[ii[a], jj[a]])
     # 1b. a pair whose surface solve is lost altogether next to a position where it touches on the real flanks: the
     # boundary nearest that contact on each member (and the mate's boundary that meets it) is tried from there
     seeds = {}

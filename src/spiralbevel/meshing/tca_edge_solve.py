@@ -200,17 +200,20 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
     if len(x) == 0:
         return x, np.zeros(0, bool), np.zeros(0)
     c1, s1 = np.cos(phi1_eff), np.sin(phi1_eff)
-    corner, ma, ea, mb, eb = corner_split(prob, member, edge)
-    (b1, b2), _, _, compiled, (sh1, sh2) = _setup(prob)
-    N = _ke.N_MARGINS
+    (b1, b2), k1, K, compiled, (sh1, sh2) = _setup(prob)
     if compiled:
-        edge = np.where(corner, ma * N + ea, edge)
-        edge2 = np.where(corner, mb * N + eb, -1)
+        # a corner row codes boundaries a, b (numbered over both members) as k1 + a K + b (corner_split); with
+        # N = k1 = k2 boundaries per member, the kernel's code m N + e of a boundary is that number itself
+        c = edge - k1
+        corner = (member == 0) & (c >= 0)
+        edge2 = np.where(corner, c % K, -1)
+        edge = np.where(corner, c // K, edge)
         (k1, p1), (k2, p2) = prob._jets
         d, M2, _ = prob._const
         conv, ndot, _ = _ke.edge_newton_jets(k1, p1, b1[0], b1[1], sh1, k2, p2, b2[0], b2[1], sh2, c1, s1, x,
                                              member, edge, edge2, d, M2, _H_TAU, tol, max_iter, _RCOND)
         return x, conv, ndot
+    corner, ma, ea, mb, eb = corner_split(prob, member, edge)
     cols = np.where(corner[:, None], np.stack([ma, ea, mb, eb], 1), -1)
     conv, ndot = _newton_numpy(prob, c1, s1, x, member, np.where(corner, 0, edge), cols, tol, max_iter)
     return x, conv, ndot
