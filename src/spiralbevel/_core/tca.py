@@ -195,7 +195,7 @@ def weingarten(dr, dn):
 
     shape = np.broadcast_shapes(np.shape(dr), np.shape(dn))[:-2]
     W = np.empty((int(np.prod(shape)), 3, 3))
-    weingarten_batch(_flat(dr, shape, (3, 2)), _flat(dn, shape, (3, 2)), W)
+    weingarten_batch(_flat(dr, shape, (3, 2)), _flat(dn, shape, (3, 2)), W, False, W)
     return W.reshape(shape + (3, 3))
 
 

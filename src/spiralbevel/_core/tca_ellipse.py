@@ -11,8 +11,10 @@ Per point, in the convex = positive convention of docs/conventions.md (outward n
   dirs[1] = n x dirs[0];
 * the ellipse semi-axes follow from lam (:func:`spiralbevel._core.tca.ellipse_axes`).
 
-Loops over points with scalar arithmetic (no LAPACK binding: a 2 x 2 inverse and eigenproblem in closed form keep
-the compile time small). Float64, mm and rad, xyz on the axis named in each docstring.
+Loops over points with scalar arithmetic (no BLAS or LAPACK binding: 3 x 3 products, a 2 x 2 inverse and a 2 x 2
+eigenproblem in closed form keep the compile time small). The contact ellipses of a TCA cycle are two calls:
+:func:`weingarten_batch` of both members (turned into the fixed frame) and :func:`relative_curvature_batch`.
+Float64, mm and rad, xyz on the axis named in each docstring.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ import numpy as np
 
 from .jit import kernel
 
-__all__ = ["pose_batch", "weingarten_batch", "relative_curvature_batch", "ellipse_batch"]
+__all__ = ["pose_batch", "weingarten_batch", "relative_curvature_batch"]
 
 
 @kernel
@@ -32,8 +34,14 @@ def pose_batch(phi1, phi2, a2, B2, R1, R2):
     (``R(a2, phi2) B2``, ``a2 (3,)`` the gear axis, normalized here, ``B2 (3, 3)``)."""
     nrm = math.sqrt(a2[0] * a2[0] + a2[1] * a2[1] + a2[2] * a2[2])
     k0, k1, k2 = a2[0] / nrm, a2[1] / nrm, a2[2] / nrm
-    K = np.array([[0.0, -k2, k1], [k2, 0.0, -k0], [-k1, k0, 0.0]])
-    KK = K @ K
+    K = np.empty((3, 3))
+    K[0, 0], K[0, 1], K[0, 2] = 0.0, -k2, k1
+    K[1, 0], K[1, 1], K[1, 2] = k2, 0.0, -k0
+    K[2, 0], K[2, 1], K[2, 2] = -k1, k0, 0.0
+    KK = np.empty((3, 3))
+    for a in range(3):
+        for b in range(3):
+            KK[a, b] = K[a, 0] * K[0, b] + K[a, 1] * K[1, b] + K[a, 2] * K[2, b]
     A = np.empty((3, 3))
     for i in range(phi1.shape[0]):
         c, s = math.cos(phi1[i]), math.sin(phi1[i])
@@ -71,10 +79,22 @@ def _weingarten(dr, dn, W):
 
 
 @kernel
-def weingarten_batch(dr, dn, W):
-    """Weingarten tensors ``W (m, 3, 3)`` from ``dr, dn (m, 3, 2)``."""
+def weingarten_batch(dr, dn, R, rotate, W):
+    """Weingarten tensors ``W (m, 3, 3)`` from ``dr, dn (m, 3, 2)``; with ``rotate``, turned into a common frame by
+    the member -> common rotations ``R (m, 3, 3)`` (R W R^T), else ``R`` is not read."""
+    Wm = np.empty((3, 3))
+    RW = np.empty((3, 3))
     for i in range(dr.shape[0]):
-        _weingarten(dr[i], dn[i], W[i])
+        if not rotate:
+            _weingarten(dr[i], dn[i], W[i])
+            continue
+        _weingarten(dr[i], dn[i], Wm)
+        for a in range(3):
+            for b in range(3):
+                RW[a, b] = R[i, a, 0] * Wm[0, b] + R[i, a, 1] * Wm[1, b] + R[i, a, 2] * Wm[2, b]
+        for a in range(3):
+            for b in range(3):
+                W[i, a, b] = RW[a, 0] * R[i, b, 0] + RW[a, 1] * R[i, b, 1] + RW[a, 2] * R[i, b, 2]
 
 
 @kernel
@@ -132,35 +152,3 @@ def relative_curvature_batch(W1, W2, n, lam, dirs):
             for b in range(3):
                 W[a, b] = W1[i, a, b] + W2[i, a, b]
         _relative_curvature(W, n[i], lam[i], dirs[i])
-
-
-@kernel
-def _rotate_tensor(R, W, out):
-    """``out = R W R^T`` (3 x 3)."""
-    RW = np.empty((3, 3))
-    for a in range(3):
-        for b in range(3):
-            RW[a, b] = R[a, 0] * W[0, b] + R[a, 1] * W[1, b] + R[a, 2] * W[2, b]
-    for a in range(3):
-        for b in range(3):
-            out[a, b] = RW[a, 0] * R[b, 0] + RW[a, 1] * R[b, 1] + RW[a, 2] * R[b, 2]
-
-
-@kernel
-def ellipse_batch(dr1, dn1, R1, dr2, dn2, R2, n, lam, dirs):
-    """Principal relative curvatures of ``m`` contacts from the member-frame derivatives ``dr, dn (m, 3, 2)`` of both
-    surfaces, their member -> common-frame rotations ``R (m, 3, 3)`` and the common unit normal ``n (m, 3)``: into
-    ``lam (m, 2)`` 1/mm and ``dirs (m, 2, 3)`` (common frame; dirs[:, 0] the major axis of the contact ellipse,
-    whose semi-axes are :func:`spiralbevel._core.tca.ellipse_axes` of ``lam``)."""
-    Wm = np.empty((3, 3))
-    W1 = np.empty((3, 3))
-    W2 = np.empty((3, 3))
-    for i in range(n.shape[0]):
-        _weingarten(dr1[i], dn1[i], Wm)
-        _rotate_tensor(R1[i], Wm, W1)
-        _weingarten(dr2[i], dn2[i], Wm)
-        _rotate_tensor(R2[i], Wm, W2)
-        for a in range(3):
-            for b in range(3):
-                W1[a, b] += W2[a, b]
-        _relative_curvature(W1, n[i], lam[i], dirs[i])

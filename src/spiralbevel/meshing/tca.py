@@ -391,11 +391,11 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     flat = np.arange(n) * P + np.maximum(sel, 0)
     nocon_or_edge = ~anyv | edge_pos
     # (positions without contact may carry no surface data, NaN: their ellipses are NaN, set below anyway)
-    lam, dirs = np.empty((n, 2)), np.empty((n, 2, 3))
+    lam, dirs, W1, W2 = np.empty((n, 2)), np.empty((n, 2, 3)), np.empty((n, 3, 3)), np.empty((n, 3, 3))
     R1s, R2s = np.ascontiguousarray(R1[flat]), np.ascontiguousarray(R2[flat])
-    _e.ellipse_batch(np.ascontiguousarray(dr1[flat]), np.ascontiguousarray(dn1[flat]), R1s,
-                     np.ascontiguousarray(dr2[flat]), np.ascontiguousarray(dn2[flat]), R2s,
-                     np.ascontiguousarray(n1f[flat]), lam, dirs)
+    _e.weingarten_batch(np.ascontiguousarray(dr1[flat]), np.ascontiguousarray(dn1[flat]), R1s, True, W1)
+    _e.weingarten_batch(np.ascontiguousarray(dr2[flat]), np.ascontiguousarray(dn2[flat]), R2s, True, W2)
+    _e.relative_curvature_batch(W1, W2, np.ascontiguousarray(n1f[flat]), lam, dirs)
     axes_ = _k.ellipse_axes(lam, approach)
     axes_ = np.where((status == ContactStatus.LINE)[:, None], np.inf, axes_)
     dirs1 = np.einsum("mji,mkj->mki", R1s, dirs)
