@@ -141,9 +141,12 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         for m in (0, 1):
             own = held[m].any(axis=1)
             with np.errstate(invalid="ignore"):
-                on_rest = np.all((gg[m] >= -tolm) | held[m], axis=1)  # NaN (no surface) fails
+                inside = np.all((gg[m] >= -tolm) | held[m], axis=1)  # on the rest of the boundary; NaN fails
             # a member with no point held on a boundary: the point lies on its real flank
-            ok &= np.where(own, on_rest, surface_contains(surfs[m], xs[:, 2 * m:2 * m + 2]))
+            free = np.flatnonzero(~own & ok)
+            if free.size:
+                inside[free] = surface_contains(surfs[m], xs[free, 2 * m:2 * m + 2])
+            ok &= inside
         with np.errstate(invalid="ignore"):
             te = te_of(xs[:, 4], ii, jj)
             good = conv & (ndot < -0.5) & (np.abs(te) < np.pi / prob.z2)
