@@ -311,7 +311,9 @@ def contact_point(sol, mp):
 # ----------------------------------------------------------------------------------------------------------------
 # curvature transfer, docs/theory/generation.md, Eqs. (G13)-(G15) (#curvature-transfer) (exactly that form; the time
 # derivative of v12 at fixed r is added to the
-# constant-velocity term for modified roll and a variable blank offset, and is zero otherwise)
+# constant-velocity term for modified roll and a variable blank offset, and is zero otherwise). Flank points are
+# evaluated per point by the compiled kernel of _core/generation_points.py; these array forms are the reference the
+# tests compare it with (tests/generation/test_flank_points_compiled.py) and serve meshing_residual
 # ----------------------------------------------------------------------------------------------------------------
 def transfer_curvature(n, eI, eII, kI, kII, vel):
     """Principal curvatures/directions of the generated surface from those of the generating surface.

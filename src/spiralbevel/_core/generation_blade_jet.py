@@ -26,7 +26,7 @@ import numpy as np
 
 from .jit import kernel
 
-__all__ = ["parameters", "blade_jet_u", "blade_jet_point", "jet_batch"]
+__all__ = ["parameters", "blade_jet_u", "blade_jet_du", "blade_jet_point", "jet_batch"]
 
 # layout of prm: fixed head, then the variable-length roll, polynomial and table coefficients
 _S_BLADE, _RH, _CHI0, _RP, _RC, _ZC, _UP, _UJ = 0, 1, 2, 3, 4, 5, 6, 7
@@ -244,9 +244,16 @@ def blade_jet_u(prm, phi, psi, out):
 
 
 @kernel
+def blade_jet_du(prm, phi, psi, out):
+    """:func:`blade_jet_u` as a compiled function of its own (not inlined): the callers that need u_phi, u_psi share
+    its machine code with :func:`blade_jet_point` instead of compiling the jet again."""
+    return blade_jet_u(prm, phi, psi, out)
+
+
+@kernel
 def blade_jet_point(prm, phi, psi, out):
     """Jet at one point (phi, psi_c) rad into ``out (3, 6)`` (see module); returns the blade parameter u (mm)."""
-    return blade_jet_u(prm, phi, psi, out)[0]
+    return blade_jet_du(prm, phi, psi, out)[0]
 
 
 @kernel

@@ -108,11 +108,7 @@ class ToothFlank:
         _, hj = ol.Rh(pj[:, 2], np.hypot(pj[:, 0], pj[:, 1]))
         t = np.linspace(0.0, 1.0, n_profile)
         H = hj[:, None] + t[None, :] * (ol.h_face(R) - hj)[:, None]
-        xb = np.empty(H.shape + (3,))
-        xb[:, 0] = xj
-        for k in range(1, n_profile):       # row by row up the profile, each from the row below
-            xb[:, k] = loc.at_R_h(R, H[:, k], xb[:, k - 1, 1:])
-        parts = [xb]
+        parts = [loc.profile_rows(R, H, xj)]     # row by row up the profile, each from the row below
         if n_fillet:
             uf = np.linspace(cp["u_min"], cp["u_j"], n_fillet)
             xf = loc.fillet_rows(R, uf[-2::-1], xj)[:, ::-1]

@@ -248,6 +248,23 @@ class Locator:
         x, ok, u = self.blade.at_axial_radius(ax, rad, x0)
         return self._blade_or_fail(x, ok, u, "grid(blade)")
 
+    def profile_rows(self, R, h, xj):
+        """(u, phi, psi_c) (n, m, 3) of the blade points at cone-distance coordinates R (n,) mm and heights h (n, m) mm,
+        row 0 the junction points ``xj`` (n, 3), each further row located from the row below (compiled, rows
+        :meth:`BladeLocator.rows`; a row with a point that start does not reach, and every row after it, by
+        :meth:`at_R_h` with its further starts)."""
+        R, h = np.asarray(R, float), np.asarray(h, float)
+        ax, rad = self.outline.axial_radius(R[:, None], h)
+        out = np.empty(h.shape + (3,))
+        out[:, 0] = xj
+        x, u = self.blade.rows(ax[:, 1:], rad[:, 1:], xj[:, 1:])
+        k = 1 + u.shape[1]
+        out[:, 1:k, 0] = u
+        out[:, 1:k, 1:] = x
+        for j in range(k, h.shape[1]):
+            out[:, j] = self.at_R_h(R, h[:, j], out[:, j - 1, 1:])
+        return out
+
     def junction(self, R, anchor=None):
         """(u, phi, psi_c) of the fillet/blade junction line (u = u_j) at cone-distance coordinates R (mm); ``anchor``
         (2,) optional (phi, psi_c) of the mean point, the first start of every station."""

@@ -10,6 +10,7 @@ Points on the blade (u >= u_j) are located here by compiled Newton solves in (ph
 from __future__ import annotations
 
 import itertools
+from functools import cached_property
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -47,7 +48,10 @@ class BladeLocator:
         # starts from the inner part of the window (the contact zone itself); solutions anywhere in it
         P, D = np.meshgrid(np.linspace(-psi_span, psi_span, n_psi), np.linspace(-0.5, 0.5, n_phi), indexing="ij")
         Phi = gen.reference_angle(P) + D
-        ax, rad, u = gen.blade_axial_radial(Phi, P)
+        from spiralbevel._core import blade_locate  # numba off the CLI's import path
+
+        ax, rad, u = (a.reshape(P.shape) for a in blade_locate.axial_radius(self._prm, np.stack([Phi, P], -1)
+                                                                             .reshape(-1, 2)))
         R, h = outline.Rh(ax, rad)
         depth = outline.ham + outline.hfm
         mR = 0.3 * (outline.Re - outline.Ri)
@@ -62,15 +66,23 @@ class BladeLocator:
         self._tab = cKDTree(np.stack([ax[ok], rad[ok]], -1))
         self._Ru = cKDTree(np.stack([R[ok], u[ok]], -1))
 
+    @cached_property
+    def _prm(self):
+        """Parameter vector of the compiled jet (axial position and radius only: no mirror, no phasing turn)."""
+        from spiralbevel._core import generation_blade_jet  # numba off the CLI's import path
+
+        return generation_blade_jet.parameters(self.gen.cp, self.gen.mp, False, 0.0)
+
     # ------------------------------------------------------------------------------------------------------------
-    def on_branch(self, x, u=None):
-        """True where (phi, psi_c) is a regular point of the chart within the table's cutter-angle window, and the
-        blade parameter u (mm; computed unless given)."""
-        phi, psi = x[..., 0], x[..., 1]
-        if u is None:
-            _, _, u = self.gen.blade_axial_radial(phi, psi)
-        d = np.angle(np.exp(1j * (phi - self.gen.reference_angle(psi))))
-        return np.isfinite(u) & (np.abs(d) <= self.phi_span), u
+    def on_branch(self, x, u):
+        """True where (phi, psi_c) ``x (..., 2)`` rad with blade parameter ``u (...)`` mm is a regular point of the
+        chart (u finite) within the table's cutter-angle window (compiled, ``_core.blade_locate.on_branch``)."""
+        from spiralbevel._core import blade_locate  # numba off the CLI's import path
+
+        ok = blade_locate.on_branch(self._prm, float(self.gen.cutter.nominal_radius), float(self.phi_span),
+                                    np.ascontiguousarray(x, float).reshape(-1, 2),
+                                    np.ascontiguousarray(u, float).reshape(-1))
+        return ok.reshape(np.shape(u))
 
     def _solve(self, solver, starts, accept=None):
         """Compiled Newton ``solver(x0) -> (x, converged, u)`` (:mod:`spiralbevel._core.blade_locate`) from the first
@@ -79,8 +91,7 @@ class BladeLocator:
         x, conv, u = None, None, None
         for x0 in starts:
             xr, cv, ur = solver(x0)
-            ok, ur = self.on_branch(xr, ur)
-            ok &= cv
+            ok = self.on_branch(xr, ur) & cv
             if accept is not None:
                 ok &= accept(xr, ur)
             if x is None:
@@ -103,10 +114,9 @@ class BladeLocator:
         """(phi, psi_c) (..., 2), converged mask (...) and blade parameter u (...) mm of the blade points on the
         circles (axial, radius)."""
         axial, radius = np.broadcast_arrays(np.asarray(axial, float), np.asarray(radius, float))
-        gen = self.gen
-        from spiralbevel._core import blade_locate, generation_blade_jet  # numba off the CLI's import path
+        from spiralbevel._core import blade_locate  # numba off the CLI's import path
 
-        prm = generation_blade_jet.parameters(gen.cp, gen.mp, False, 0.0)   # axial and radius: no mirror needed
+        prm = self._prm
         a, r = np.ascontiguousarray(axial.ravel()), np.ascontiguousarray(radius.ravel())
 
         def solver(x0):     # compiled Newton, analytic Jacobian of the jet (_core/blade_locate.py)
@@ -125,15 +135,28 @@ class BladeLocator:
 
         return self._solve(solver, starts, accept)
 
+    def rows(self, axial, radius, x0):
+        """Rows of blade points on the circles ``axial, radius (n, m)`` mm, each row located from the row before, the
+        first from ``x0 (n, 2)`` (phi, psi_c), in one compiled call (:func:`spiralbevel._core.blade_locate.locate_rows`:
+        the first start of :meth:`at_axial_radius` and the acceptance rule of :meth:`_solve`). Returns (phi, psi_c)
+        (n, k, 2), u (n, k) mm of the first k rows accepted in full (k <= m)."""
+        from spiralbevel._core import blade_locate  # numba off the CLI's import path
+
+        x, u, k = blade_locate.locate_rows(
+            self._prm, np.ascontiguousarray(x0, float), np.ascontiguousarray(axial, float),
+            np.ascontiguousarray(radius, float), TOL.newton_abs * 10, TOL.max_iter, _MAX_STEP,
+            float(self.gen.cutter.nominal_radius), float(self.phi_span), self.u_j - 1e-9)
+        return x[:, :k], u[:, :k]
+
     def at_R_u(self, R, u, anchor=None):
         """(phi, psi_c), converged mask and u (mm) of the blade points with cone-distance coordinate R (mm) and blade
         parameter u (mm, >= u_j); ``anchor`` (2,) (phi, psi_c) of a flank point (the mean point) is the first start,
         so that the line u = const is the one through the flank's own contact zone."""
         R, u = np.broadcast_arrays(np.asarray(R, float), np.asarray(u, float))
-        gen, ol = self.gen, self.outline
-        from spiralbevel._core import blade_locate, generation_blade_jet  # numba off the CLI's import path
+        ol = self.outline
+        from spiralbevel._core import blade_locate  # numba off the CLI's import path
 
-        prm = generation_blade_jet.parameters(gen.cp, gen.mp, False, 0.0)
+        prm = self._prm
         Rf, uf = np.ascontiguousarray(R.ravel()), np.ascontiguousarray(u.ravel())
 
         def solver(x0):     # compiled Newton (_core/blade_locate.py)
@@ -153,7 +176,8 @@ class BladeLocator:
         depth = ol.ham + ol.hfm
 
         def accept(x, u):   # the junction line's point of this face station, not one of its continuation
-            ax, rad, _ = gen.blade_axial_radial(x[..., 0], x[..., 1])
+            ax, rad, _ = blade_locate.axial_radius(prm, np.ascontiguousarray(x, float).reshape(-1, 2))
+            ax, rad = ax.reshape(R.shape), rad.reshape(R.shape)
             with np.errstate(invalid="ignore"):
                 return np.abs(ol.Rh(ax, rad)[1] - ol.h_root(R)) < depth
 

@@ -77,9 +77,7 @@ class Generator:
     def evaluate_at(self, u, phi, psi, curvature=True) -> FlankPoints:
         """Flank points at (u, phi, psi_c) that satisfy the equation of meshing (the caller's root)."""
         u, phi, psi = np.broadcast_arrays(*(np.asarray(x, float) for x in (u, phi, psi)))
-        rho, z, chi, dchi = _g.profile(u, self.cp)
-        sol = dict(phi=phi, psi=psi, rho=rho, z=z, chi=chi, dchi=dchi, u=u, theta=phi - (np.pi - self.mp["q"] + psi))
-        return self._evaluate(sol, curvature)
+        return self._evaluate(u, phi, psi, curvature)
 
     def axial_radial(self, u, psi, dphi=0.0):
         """(axial z, radius) of the generated point in the member frame, and the meshing discriminant (root choice
@@ -102,29 +100,36 @@ class Generator:
         if np.any(np.abs(sol["disc"]) > 1.0):
             raise GeometryError.single("settings", "-", "settings for which the cutter generates the flank", "-",
                                        "the equation of meshing has no solution: the cutter does not reach the blank")
-        return self._evaluate(sol, curvature)
+        return self._evaluate(sol["u"], sol["phi"], sol["psi"], curvature)
 
-    def _evaluate(self, sol, curvature):
-        mp, psi = self.mp, sol["psi"]
-        r, n_h, t_h, _ = _g.machine_state(sol, self.cp, mp)
-        n_in = self.s * n_h
-        pts = self._mirror(_g.to_member(r, psi, mp))
-        nrm = self._mirror(_g.to_member(-n_in, psi, mp, point=False))
-        if curvature:
-            kI = -sol["dchi"]
-            kII = -self.s * np.sin(sol["chi"]) / sol["rho"]
-            eII = np.cross(n_in, t_h)
-            vel = _g.relative_velocity(r, psi, mp)
-            k_a, k_b, d_a, d_b, _ = _g.transfer_curvature(n_in, t_h, eII, kI, kII, vel)
-            d_a = self._mirror(_g.to_member(d_a, psi, mp, point=False))
-            d_b = self._mirror(_g.to_member(d_b, psi, mp, point=False))
-            k1, k2, e1, e2 = _order(pts, nrm, k_a, k_b, d_a, d_b)
-        else:
-            nan = np.full(sol["u"].shape, np.nan)
-            k1 = k2 = nan
-            e1 = e2 = np.full(pts.shape, np.nan)
-        return FlankPoints(points=pts, normals=nrm, k1=k1, k2=k2, e1=e1, e2=e2, u=sol["u"], theta=sol["theta"],
-                           psi_c=psi, fillet=sol["u"] < self.cp["u_j"])
+    def _kernel_params(self):
+        """(prm, fil) of the compiled flank points (``_core.generation_points``) in the member frame of this hand,
+        built again whenever ``hand``, ``cp`` or ``mp`` has been replaced (callers set another hand, or a copy with
+        another offset law)."""
+        key = (self.hand, self.cp, self.mp)
+        cached = self.__dict__.get("_prm_cache")
+        if cached is None or any(a is not b for a, b in zip(cached[0], key)):
+            from spiralbevel._core import generation_blade_jet, generation_points  # numba off the CLI's import path
+
+            cached = (key, (generation_blade_jet.parameters(self.cp, self.mp, self.hand is Hand.RIGHT, 0.0),
+                            generation_points.fillet_parameters(self.cp)))
+            self.__dict__["_prm_cache"] = cached
+        return cached[1]
+
+    def _evaluate(self, u, phi, psi, curvature):
+        """Points, outward normals and (if ``curvature``) principal curvatures and directions at (u, phi, psi_c)
+        (broadcast arrays), compiled per point (``_core.generation_points``: the curvature transfer,
+        docs/theory/generation.md, Eqs. (G13)-(G15), #curvature-transfer)."""
+        from spiralbevel._core.generation_points import flank_points
+
+        prm, fil = self._kernel_params()
+        shape = u.shape
+        flat = [np.ascontiguousarray(x, float).reshape(-1) for x in (u, phi, psi)]
+        P, N, E1, E2, k1, k2 = flank_points(prm, fil, *flat, bool(curvature))
+        v3 = shape + (3,)
+        return FlankPoints(points=P.reshape(v3), normals=N.reshape(v3), k1=k1.reshape(shape), k2=k2.reshape(shape),
+                           e1=E1.reshape(v3), e2=E2.reshape(v3), u=u, theta=phi - (np.pi - self.mp["q"] + psi),
+                           psi_c=psi, fillet=u < self.cp["u_j"])
 
     def meshing_residual(self, u, theta, psi):
         """Relative residual n.v / max(|v|, 1e-4 |omega_12| |r|) of seed 001 Eq. (13) at (u, theta, psi_c).
@@ -156,21 +161,3 @@ def meshing_residual(cutter, settings, u, theta, psi_c):
     theta, psi_c : array_like, rad
     """
     return Generator(cutter, settings, Hand.LEFT).meshing_residual(u, theta, psi_c)
-
-
-def _order(pts, nrm, k_a, k_b, d_a, d_b):
-    """Order principal data: k1 along the profile (direction most perpendicular to r), e1 root->top, e1 x e2 = n."""
-    rhat = pts / np.linalg.norm(pts, axis=-1, keepdims=True)
-    a_is_profile = np.abs(np.einsum("...i,...i", d_a, rhat)) <= np.abs(np.einsum("...i,...i", d_b, rhat))
-    k1 = np.where(a_is_profile, k_a, k_b)
-    k2 = np.where(a_is_profile, k_b, k_a)
-    e1 = np.where(a_is_profile[..., None], d_a, d_b)
-    # root -> top: away from the axis in the axial plane, perpendicular to r
-    radial = pts.copy()
-    radial[..., 2] = 0.0
-    radial /= np.linalg.norm(radial, axis=-1, keepdims=True)
-    up = radial - np.einsum("...i,...i", radial, rhat)[..., None] * rhat
-    sgn = np.where(np.einsum("...i,...i", e1, up) < 0.0, -1.0, 1.0)
-    e1 = e1 * sgn[..., None]
-    e2 = np.cross(nrm, e1)
-    return k1, k2, e1, e2
