@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .rotations import rot_axis, rot_y, rot_z
+from .rotations import rot_y, rot_z
 
 __all__ = [
     "assembly_axes",
@@ -63,11 +63,22 @@ def tangent_basis(n):
     return e1, e2
 
 
+def _flat(a, shape, tail):
+    """``a`` broadcast to ``shape + tail`` as a contiguous float64 array of rows ``(-1,) + tail``."""
+    return np.ascontiguousarray(np.broadcast_to(np.asarray(a, float), shape + tail)).reshape((-1,) + tail)
+
+
 def _pose(phi1, phi2, axes):
+    """Member -> fixed rotations R1 = R_z(phi1), R2 = R(a2, phi2) B2 (..., 3, 3), compiled
+    (:func:`spiralbevel._core.tca_ellipse.pose_batch`)."""
+    from .tca_ellipse import pose_batch  # numba stays off the import path of the numpy-only users of this module
+
     a1, o1, a2, o2, B2 = axes
-    R1 = rot_z(phi1)
-    R2 = rot_axis(a2, phi2) @ B2
-    return R1, R2
+    shape = np.broadcast_shapes(np.shape(phi1), np.shape(phi2))
+    p1, p2 = _flat(phi1, shape, ()), _flat(phi2, shape, ())
+    R1, R2 = np.empty((p1.size, 3, 3)), np.empty((p1.size, 3, 3))
+    pose_batch(p1, p2, np.ascontiguousarray(a2, float), np.ascontiguousarray(B2, float), R1, R2)
+    return R1.reshape(shape + (3, 3)), R2.reshape(shape + (3, 3))
 
 
 def _mv(R, v):
@@ -178,10 +189,14 @@ def weingarten(dr, dn):
 
     With outward normals, v . W v = v . (dn/dr) v is the normal curvature in the convex = positive convention of
     docs/conventions.md. W = dn (dr^T dr)^-1 dr^T, symmetrized (exactly symmetric for a smooth surface).
+    Compiled: :func:`spiralbevel._core.tca_ellipse.weingarten_batch`.
     """
-    G = np.swapaxes(dr, -1, -2) @ dr
-    W = dn @ np.linalg.inv(G) @ np.swapaxes(dr, -1, -2)
-    return 0.5 * (W + np.swapaxes(W, -1, -2))
+    from .tca_ellipse import weingarten_batch
+
+    shape = np.broadcast_shapes(np.shape(dr), np.shape(dn))[:-2]
+    W = np.empty((int(np.prod(shape)), 3, 3))
+    weingarten_batch(_flat(dr, shape, (3, 2)), _flat(dn, shape, (3, 2)), W, False, W)
+    return W.reshape(shape + (3, 3))
 
 
 def relative_curvature(W1, W2, n):
@@ -200,15 +215,21 @@ def relative_curvature(W1, W2, n):
         Eigenvalues lam_1 <= lam_2 of K = W1 + W2 restricted to the tangent plane. The separation of the two
         surfaces at a tangent-plane offset xi from the contact point is s(xi) = 1/2 xi^T K xi + O(|xi|^3).
     dirs : (..., 2, 3) float
-        Matching unit eigenvectors (tangent plane, fixed frame); dirs[..., 0] is the long axis of the ellipse.
+        Matching unit eigenvectors (tangent plane, fixed frame); dirs[..., 0] is the long axis of the ellipse,
+        dirs[..., 1] = n x dirs[..., 0].
+
+    Notes
+    -----
+    Compiled: :func:`spiralbevel._core.tca_ellipse.relative_curvature_batch` (K = T^T (W1 + W2) T on the basis T of
+    :func:`tangent_basis`, its 2 x 2 eigenproblem in closed form).
     """
-    e1, e2 = tangent_basis(n)
-    T = np.stack([e1, e2], -1)  # (..., 3, 2)
-    K = np.swapaxes(T, -1, -2) @ (W1 + W2) @ T
-    K = 0.5 * (K + np.swapaxes(K, -1, -2))
-    lam, vec = np.linalg.eigh(K)
-    dirs = np.swapaxes(T @ vec, -1, -2)
-    return lam, dirs
+    from .tca_ellipse import relative_curvature_batch
+
+    shape = np.broadcast_shapes(np.shape(W1)[:-2], np.shape(W2)[:-2], np.shape(n)[:-1])
+    m = int(np.prod(shape))
+    lam, dirs = np.empty((m, 2)), np.empty((m, 2, 3))
+    relative_curvature_batch(_flat(W1, shape, (3, 3)), _flat(W2, shape, (3, 3)), _flat(n, shape, (3,)), lam, dirs)
+    return lam.reshape(shape + (2,)), dirs.reshape(shape + (2, 3))
 
 
 def ellipse_axes(lam, approach):

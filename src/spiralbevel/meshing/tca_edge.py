@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .tca_edge_solve import _all_margins, corner_index, corner_split, solve_edge_contacts
+from .tca_edge_solve import _all_margins, corner_index, corner_split, margins_of, solve_edge_contacts  # noqa: F401
 
 __all__ = ["solve_edge_contacts", "edge_stage", "corner_split", "corner_index"]
 
@@ -119,7 +119,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         phi_eff = phi1[ii] + pairs[jj] * T1
         xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
         tolm = 1e-9
-        gg = [_all_margins(surfs[m], xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
+        gg = [margins_of(prob, m, xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
         ok = conv.copy()
         # held[a, m, e]: system a holds its point of member m on boundary e (that margin is 0 by construction)
         corner, ma, ea, mb, eb = corner_split(prob, mem, ee)
@@ -141,9 +141,12 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         for m in (0, 1):
             own = held[m].any(axis=1)
             with np.errstate(invalid="ignore"):
-                on_rest = np.all((gg[m] >= -tolm) | held[m], axis=1)  # NaN (no surface) fails
+                inside = np.all((gg[m] >= -tolm) | held[m], axis=1)  # on the rest of the boundary; NaN fails
             # a member with no point held on a boundary: the point lies on its real flank
-            ok &= np.where(own, on_rest, surface_contains(surfs[m], xs[:, 2 * m:2 * m + 2]))
+            free = np.flatnonzero(~own & ok)
+            if free.size:
+                inside[free] = surface_contains(surfs[m], xs[free, 2 * m:2 * m + 2])
+            ok &= inside
         with np.errstate(invalid="ignore"):
             te = te_of(xs[:, 4], ii, jj)
             good = conv & (ndot < -0.5) & (np.abs(te) < np.pi / prob.z2)
@@ -201,25 +204,27 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     best_other = _best_of_others(te_phys)
     ii, jj = np.nonzero((status == 2) & ~(te_surface < best_other - te_tie))  # ContactStatus.EDGE
     mate = {"top": ("fillet", "root"), "fillet": ("top",), "root": ("top",)}
-    I, Jp, M, E = [], [], [], []
     if ii.size:
-        g = [_all_margins(surfs[0], x[ii, jj, 0:2]), _all_margins(surfs[1], x[ii, jj, 2:4])]
-        for a in range(ii.size):
-            want = set()
-            for m in (0, 1):
-                for e in np.flatnonzero(~(g[m][a] >= 0)):
-                    nm = names[m][e]
-                    if nm == "generated":
-                        continue
-                    want.add((m, int(e)))
-                    for other in mate.get(nm, ()):
-                        if other in names[1 - m]:
-                            want.add((1 - m, names[1 - m].index(other)))
-            for m, e in sorted(want):
-                I.append(ii[a]), Jp.append(jj[a]), M.append(m), E.append(e)
-    if I:
-        I, Jp, M, E = (np.array(v, int) for v in (I, Jp, M, E))
-        try_solve(I, Jp, M, E, x[I, Jp])
+        kmax = max(len(names[0]), len(names[1]))
+        # crossed[a, m, e]: candidate a's point of member m lies beyond boundary e of m (or off the surface: NaN)
+        crossed = np.zeros((ii.size, 2, kmax), bool)
+        for m in (0, 1):
+            crossed[:, m, :len(names[m])] = ~(margins_of(prob, m, x[ii, jj, 2 * m:2 * m + 2]) >= 0)
+        # link[m, e, m', e']: crossing boundary e of m asks for the edge system of e' of m': e itself (but the end of
+        # the generated surface) and the boundary of the other member that meets it
+        link = np.zeros((2, kmax, 2, kmax), bool)
+        for m in (0, 1):
+            for e, nm in enumerate(names[m]):
+                if nm == "generated":
+                    continue
+                link[m, e, m, e] = True
+                for other in mate.get(nm, ()):
+                    if other in names[1 - m]:
+                        link[m, e, 1 - m, names[1 - m].index(other)] = True
+        want = (crossed.reshape(ii.size, -1).astype(np.int64) @ link.reshape(2 * kmax, -1).astype(np.int64)) > 0
+        a, M, E = np.nonzero(want.reshape(ii.size, 2, kmax))  # in the order (candidate, member, boundary)
+        if a.size:
+            try_solve(ii[a], jj[a], M, E, x[ii[a], jj[a]])
     # 1b. a pair whose surface solve is lost altogether next to a position where it touches on the real flanks: the
     # boundary nearest that contact on each member (and the mate's boundary that meets it) is tried from there
     seeds = {}
@@ -231,7 +236,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     g_phys = [np.full((n, P, len(names[m])), np.nan) for m in (0, 1)]
     if near.any():
         for m in (0, 1):
-            g_phys[m][near] = _all_margins(surfs[m], x[near][:, 2 * m:2 * m + 2])
+            g_phys[m][near] = margins_of(prob, m, x[near][:, 2 * m:2 * m + 2])
     dd, ii, jj = np.nonzero(lost)
     for i, j, d in sorted(zip(ii.tolist(), jj.tolist(), (2 * dd - 1).tolist())):  # the order of (i, j, d)
         k = i + d

@@ -39,9 +39,33 @@ def _shares(kind, prm, b):
     return bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and np.array_equal(b[1][8:], prm))
 
 
-def _all_margins(surface, q):
-    """All boundary margins (m, k) of ``surface`` at ``q (m, 2)``: compiled where it has ``boundary_jet``."""
-    b = _boundary(surface)
+def _setup(prob):
+    """Constants of the edge solves of one problem, computed once and kept on it: the compiled margins of both
+    surfaces (or None), the numbers of boundaries (k1, K = k1 + k2, at least 1), whether the whole edge Newton runs in
+    compiled code, and then whether each surface's margins share its jet (:func:`_shares`)."""
+    s = prob.__dict__.get("_edge_setup")
+    if s is None:
+        b = (_boundary(prob.pinion), _boundary(prob.gear))
+        k1 = len(getattr(prob.pinion, "boundary_names", ()))
+        k2 = len(getattr(prob.gear, "boundary_names", ()))
+        compiled = (prob._jets is not None and b[0] is not None and b[1] is not None
+                    and k1 == k2 == _ke.N_MARGINS)
+        shares = (_shares(*prob._jets[0], b[0]), _shares(*prob._jets[1], b[1])) if compiled else (False, False)
+        s = (b, k1, max(1, k1 + k2), compiled, shares)
+        prob._edge_setup = s
+    return s
+
+
+def margins_of(prob, member, q):
+    """All boundary margins (m, k) of the pinion (``member`` 0) or gear (1) of ``prob`` at ``q (m, 2)``."""
+    return _all_margins((prob.pinion, prob.gear)[member], q, _setup(prob)[0][member])
+
+
+def _all_margins(surface, q, b=False):
+    """All boundary margins (m, k) of ``surface`` at ``q (m, 2)``: compiled where it has ``boundary_jet`` (``b``: that
+    jet, or None, when the caller knows it)."""
+    if b is False:
+        b = _boundary(surface)
     if b is not None:
         return _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))[0]
     with np.errstate(invalid="ignore"):
@@ -122,8 +146,7 @@ def corner_split(prob, member, edge):
     ma, ea, mb, eb : (m,) int
         Member (0 pinion, 1 gear) and boundary index of a and of b (0 where not a corner).
     """
-    k1 = len(getattr(prob.pinion, "boundary_names", ()))
-    K = max(1, k1 + len(getattr(prob.gear, "boundary_names", ())))
+    _, k1, K, _, _ = _setup(prob)
     member, edge = np.asarray(member), np.asarray(edge)
     corner = (member == 0) & (edge >= k1)
     c = np.where(corner, edge - k1, 0)
@@ -136,8 +159,7 @@ def corner_index(prob, a, b):
     """The edge index (with member 0) of the corner where boundary ``a = (member, index)`` meets ``b``: two
     boundaries of different members (their curves meet) or of the same member (its flank's vertex touches the
     other flank)."""
-    k1 = len(prob.pinion.boundary_names)
-    K = k1 + len(prob.gear.boundary_names)
+    _, k1, K, _, _ = _setup(prob)
     return k1 + (a[0] * k1 + a[1]) * K + b[0] * k1 + b[1]
 
 
@@ -178,19 +200,20 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
     if len(x) == 0:
         return x, np.zeros(0, bool), np.zeros(0)
     c1, s1 = np.cos(phi1_eff), np.sin(phi1_eff)
-    corner, ma, ea, mb, eb = corner_split(prob, member, edge)
-    b1, b2 = _boundary(prob.pinion), _boundary(prob.gear)
-    N = _ke.N_MARGINS
-    if (prob._jets is not None and b1 is not None and b2 is not None
-            and len(prob.pinion.boundary_names) == len(prob.gear.boundary_names) == N):
-        edge = np.ascontiguousarray(np.where(corner, ma * N + ea, edge), np.int64)
-        edge2 = np.ascontiguousarray(np.where(corner, mb * N + eb, -1), np.int64)
+    (b1, b2), k1, K, compiled, (sh1, sh2) = _setup(prob)
+    if compiled:
+        # a corner row codes boundaries a, b (numbered over both members) as k1 + a K + b (corner_split); with
+        # N = k1 = k2 boundaries per member, the kernel's code m N + e of a boundary is that number itself
+        c = edge - k1
+        corner = (member == 0) & (c >= 0)
+        edge2 = np.where(corner, c % K, -1)
+        edge = np.where(corner, c // K, edge)
         (k1, p1), (k2, p2) = prob._jets
         d, M2, _ = prob._const
-        conv, ndot, _ = _ke.edge_newton_jets(k1, p1, b1[0], b1[1], _shares(k1, p1, b1), k2, p2, b2[0], b2[1],
-                                             _shares(k2, p2, b2), c1, s1, x, member, edge, edge2, d, M2, _H_TAU,
-                                             tol, max_iter, _RCOND)
+        conv, ndot, _ = _ke.edge_newton_jets(k1, p1, b1[0], b1[1], sh1, k2, p2, b2[0], b2[1], sh2, c1, s1, x,
+                                             member, edge, edge2, d, M2, _H_TAU, tol, max_iter, _RCOND)
         return x, conv, ndot
+    corner, ma, ea, mb, eb = corner_split(prob, member, edge)
     cols = np.where(corner[:, None], np.stack([ma, ea, mb, eb], 1), -1)
     conv, ndot = _newton_numpy(prob, c1, s1, x, member, np.where(corner, 0, edge), cols, tol, max_iter)
     return x, conv, ndot

@@ -64,23 +64,17 @@ def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10
         TE at the crossing (NaN where the curves do not cross: the leading pair's contact ends there and the TE
         jumps; the rotation is then the middle of the interval).
     """
-    n = len(phi1)
-    jobs = []
-    for i in range(n - 1):
-        a, b = sel[i], sel[i + 1]
-        if a < 0 or b < 0 or a == b:
-            continue
-        d0 = te2[i, b] - te2[i, a]
-        d1 = te2[i + 1, b] - te2[i + 1, a]
-        if np.isfinite(d0) and np.isfinite(d1) and max(abs(d0), abs(d1)) <= te_tie:
-            continue  # shared contact (tie), not a transfer
-        jobs.append((i, a, b))
-    if not jobs:
+    sel = np.asarray(sel)
+    a, b = sel[:-1], sel[1:]
+    ic = np.flatnonzero((a >= 0) & (b >= 0) & (a != b))  # the pair in contact changes between i and i + 1
+    ac, bc = a[ic], b[ic]
+    d0 = te2[ic, bc] - te2[ic, ac]
+    d1 = te2[ic + 1, bc] - te2[ic + 1, ac]
+    tie = np.isfinite(d0) & np.isfinite(d1) & (np.maximum(np.abs(d0), np.abs(d1)) <= te_tie)  # shared contact
+    I, A, B = ic[~tie], ac[~tie], bc[~tie]
+    m = len(I)
+    if not m:
         return np.zeros(0), np.zeros(0)
-    m = len(jobs)
-    I = np.array([j[0] for j in jobs])
-    A = np.array([j[1] for j in jobs])
-    B = np.array([j[2] for j in jobs])
     lo, hi = phi1[I].astype(float), phi1[I + 1].astype(float)
     # each pair's contact at the other end of the interval: solved from its own solution where it is missing
     ta_hi, tb_lo = te2[I + 1, A].copy(), te2[I, B].copy()
@@ -89,8 +83,9 @@ def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10
     miss_a, miss_b = ~np.isfinite(ta_hi), ~np.isfinite(tb_lo)
     if miss_a.any() or miss_b.any():
         na = int(miss_a.sum())
-        t, _ = _te_at(prob, np.r_[hi[miss_a], lo[miss_b]], np.r_[pairs[A[miss_a]], pairs[B[miss_b]]],
-                      np.r_[ka[miss_a], kb[miss_b]], np.concatenate([xa[miss_a], xb[miss_b]]), te_of_phi, tol)
+        t, _ = _te_at(prob, np.concatenate([hi[miss_a], lo[miss_b]]),
+                      np.concatenate([pairs[A[miss_a]], pairs[B[miss_b]]]), np.concatenate([ka[miss_a], kb[miss_b]]),
+                      np.concatenate([xa[miss_a], xb[miss_b]]), te_of_phi, tol)
         ta_hi[miss_a], tb_lo[miss_b] = t[:na], t[na:]
     d_lo = tb_lo - te2[I, A]
     d_hi = te2[I + 1, B] - ta_hi
@@ -98,14 +93,14 @@ def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10
     phi_t = 0.5 * (lo + hi)
     te_t = np.full(m, np.nan)
     side = np.zeros(m, np.int64)
-    kk, kind2 = np.r_[pairs[A], pairs[B]], np.r_[ka, kb]
+    kk, kind2 = np.concatenate([pairs[A], pairs[B]]), np.concatenate([ka, kb])
     for _ in range(iterations):
         c = np.flatnonzero(cross)
         if not c.size:
             break
         p = _kt.illinois_propose(lo, hi, d_lo, d_hi, c)
-        cc = np.r_[c, c + m]
-        t, xn = _te_at(prob, np.r_[p, p], kk[cc], kind2[cc], np.concatenate([xa[c], xb[c]]), te_of_phi, tol)
+        cc = np.concatenate([c, c + m])
+        t, xn = _te_at(prob, np.concatenate([p, p]), kk[cc], kind2[cc], np.concatenate([xa[c], xb[c]]), te_of_phi, tol)
         good = np.empty(c.size, bool)
         _kt.illinois_accept(c, p, t[:c.size], t[c.size:], lo, hi, d_lo, d_hi, side, phi_t, te_t, cross, good)
         xa[c[good]], xb[c[good]] = xn[:c.size][good], xn[c.size:][good]
