@@ -56,6 +56,38 @@ def pinion_to_gear(phi1, shaft_angle, ratio):
     return rot_y(-shaft_angle) @ rot_axis(gear_axis(shaft_angle), ratio * phi1) @ rot_z(phi1)
 
 
+def pinion_to_fixed_and_gear(vectors, phi1, shaft_angle, ratio):
+    """Pinion member vectors seen in the fixed frame and in the gear member frame, elementwise (no 3 x 3 stacks).
+
+    M = R_y(-S) R(a2, ratio phi1) R_z(phi1) = R_z(ratio phi1) R_y(-S) R_z(phi1), because R_y(-S) a2 = e_z
+    (R_y(-S) R(a2, t) R_y(S) = R(R_y(-S) a2, t)); the same map as :func:`pinion_to_gear` to round-off.
+
+    Parameters
+    ----------
+    vectors : sequence of (..., 3) float
+        Vectors in the pinion member frame (points in mm or unit normals).
+    phi1 : (...) float, rad
+        Pinion rotation (broadcast with the vectors' leading axes).
+
+    Returns
+    -------
+    fixed, gear : lists of (..., 3) float
+        R_z(phi1) v (fixed frame) and M v (gear member frame) for each vector.
+    """
+    phi1 = np.asarray(phi1, float)
+    c1, s1 = np.cos(phi1), np.sin(phi1)
+    ck, sk = np.cos(ratio * phi1), np.sin(ratio * phi1)
+    cS, sS = np.cos(shaft_angle), np.sin(shaft_angle)
+    fixed, gear = [], []
+    for v in vectors:
+        x, y, z = v[..., 0], v[..., 1], v[..., 2]
+        xf, yf = c1 * x - s1 * y, s1 * x + c1 * y
+        xa, za = cS * xf - sS * z, sS * xf + cS * z
+        fixed.append(np.stack([xf, yf, z * np.ones_like(xf)], -1))
+        gear.append(np.stack([ck * xa - sk * yf, sk * xa + ck * yf, za], -1))
+    return fixed, gear
+
+
 # --------------------------------------------------------------------------------------------- meshing equation
 def willis(r, n, p):
     """det[r, n, p] = (r x n) . p (mm for unit n), broadcasting over the leading axes."""
@@ -106,8 +138,9 @@ def wrap_near(x, ref):
 def polish_phi1(A, B, C, phi1, iterations=2):
     """Newton steps on A cos x + B sin x + C (analytic derivative), vectorized."""
     for _ in range(iterations):
-        f = A * np.cos(phi1) + B * np.sin(phi1) + C
-        df = -A * np.sin(phi1) + B * np.cos(phi1)
+        c, s = np.cos(phi1), np.sin(phi1)
+        f = A * c + B * s + C
+        df = B * c - A * s
         safe = np.abs(df) > 1e-300
         phi1 = phi1 - np.where(safe, f / np.where(safe, df, 1.0), 0.0)
     return phi1
@@ -245,6 +278,7 @@ def reduce_periodic(values, period, ref=None):
 
 __all__ = [
     "pitch_angles", "gear_axis", "pitch_line", "pinion_to_fixed", "gear_to_fixed", "pinion_to_gear",
+    "pinion_to_fixed_and_gear",
     "willis", "meshing_function", "meshing_coefficients", "meshing_roots", "wrap_near", "polish_phi1",
     "bracket_scan", "bracketed_newton", "fd_normals", "logspiral_invariant", "reduce_periodic",
 ]

@@ -27,7 +27,7 @@ from typing import Callable, Literal
 import numpy as np
 
 from .._core import meshing as _m
-from .._core.rotations import apply
+from .._core.envelope_kernel import envelope_points
 from ..conventions import TOL
 from ..errors import ConvergenceError, DesignError, NoContactError
 from .kinematics import BevelPairKinematics
@@ -160,32 +160,19 @@ def solve_envelope(surface: Surface, kinematics: BevelPairKinematics, u, v, *, b
     Notes
     -----
     For constant-ratio rotation about a1 the meshing function is exactly f = A cos phi1 + B sin phi1 + C with
-    (A, B, C) from q = r1 x n1 (docs/theory/gearing.md, Eq. (M5)), so both roots are found in closed form for all points
-    at once and then
-    polished by two vectorized Newton steps with the analytic derivative; the residual is re-evaluated with the
-    rotation-matrix form of f.
+    (A, B, C) from q = r1 x n1 (docs/theory/gearing.md, Eqs. (M5a)-(M5b)), so both roots are found in closed form for
+    all points at once (atan2 and arccos, no iteration) and then polished by two Newton steps with the analytic
+    derivative (the arccos loses digits near a tangent root, |C| close to hypot(A, B)). The conjugate points and
+    normals are mapped with the elementwise form M = R_z((z1/z2) phi1) R_y(-S) R_z(phi1) of Eq. (M6). Roots, polish,
+    residual and maps run in one compiled pass over the points (``_core/envelope_kernel.py``).
     """
     if branch not in (1, -1, None):
         raise DesignError.single("branch", branch, "+1, -1 or None", "-")
     r1, n1 = evaluate_surface(surface, u, v, fd_step, orientation)
     u_b, v_b = np.broadcast_arrays(np.asarray(u, float), np.asarray(v, float))
-    g1 = kinematics.pitch_angle_pinion
-    A, B, C = _m.meshing_coefficients(r1, n1, g1)
-    plus, minus, exists = _m.meshing_roots(A, B, C)
-    guess = np.broadcast_to(np.asarray(phi1_guess, float), exists.shape)
-    if branch == 1:
-        root = plus
-    elif branch == -1:
-        root = minus
-    else:
-        dp = np.abs(_m.wrap_near(plus, guess) - guess)
-        dm = np.abs(_m.wrap_near(minus, guess) - guess)
-        root = np.where(dp <= dm, plus, minus)
-    root = np.where(exists, root, guess)
-    phi1 = _m.wrap_near(_m.polish_phi1(A, B, C, root), guess)
-    scale = np.maximum(np.linalg.norm(r1, axis=-1), np.finfo(float).tiny)
-    residual = np.abs(kinematics.meshing_function(r1, n1, phi1)) / scale
-    converged = exists & (residual <= tol)
+    phi1, residual, exists, converged, points, normals, fixed = envelope_points(
+        r1, n1, phi1_guess, 0 if branch is None else branch, kinematics.pitch_angle_pinion, kinematics.shaft_angle,
+        kinematics.ratio, tol)
     if strict and not exists.all():
         raise NoContactError("no contact: the meshing equation has no root at "
                              + _position(~exists, ("u", u_b), ("v", v_b)))
@@ -193,13 +180,11 @@ def solve_envelope(surface: Surface, kinematics: BevelPairKinematics, u, v, *, b
         bad = ~converged
         raise ConvergenceError("meshing equation not solved at " + _position(bad, ("u", u_b), ("v", v_b)),
                                iterations=2, residual=float(np.max(residual[bad])), last=phi1)
-    nan = np.where(converged, 0.0, np.nan)
-    phi1 = phi1 + nan
-    M = kinematics.pinion_to_gear(phi1)
+    phi1 = np.where(converged, phi1, np.nan)
     return EnvelopeResult(
         u=u_b, v=v_b, phi1=phi1, phi2=kinematics.gear_angle(phi1),
-        points=apply(M, r1), normals=-apply(M, n1), pinion_points=r1, pinion_normals=n1,
-        contact_points=apply(kinematics.pinion_to_fixed(phi1), r1), residual=residual, converged=converged,
+        points=points, normals=normals, pinion_points=r1, pinion_normals=n1,
+        contact_points=fixed, residual=residual, converged=converged,
         branch=branch,
     )
 
@@ -317,11 +302,12 @@ def solve_contact_line(surface: Surface, kinematics: BevelPairKinematics, phi1: 
                                residual=float(np.max(res[~converged])), last=x)
     x = np.where(converged, x, np.nan)
     r1, n1 = evaluate_surface(surf, uu, x, fd_step, orientation)
-    M = kinematics.pinion_to_gear(phi1)
+    (fixed, _), (points, normals) = _m.pinion_to_fixed_and_gear((r1, n1), phi1, kinematics.shaft_angle,
+                                                                kinematics.ratio)
     uo, vo = (uu, x) if solve_for == "v" else (x, uu)
     return ContactLineResult(
         phi1=float(phi1), phi2=float(kinematics.gear_angle(phi1)), u=uo, v=vo, pinion_points=r1,
-        pinion_normals=n1, points=apply(M, r1), normals=-apply(M, n1),
-        contact_points=apply(kinematics.pinion_to_fixed(phi1), r1), residual=res, converged=converged,
+        pinion_normals=n1, points=points, normals=-normals,
+        contact_points=fixed, residual=res, converged=converged,
         iterations=it,
     )
