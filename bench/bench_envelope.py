@@ -12,11 +12,14 @@ Baselines (what a competent scipy user writes):
 
 * envelope: evaluate the surface once, then ONE vectorized ``scipy.optimize.newton`` call (secant, all points at once)
   on f(phi1) from a start 0.1 rad off the root, then map the points and normals to the gear (``to_gear``, the same
-  elementwise map the package uses). The package solves f = A cos phi1 + B sin phi1 + C in closed form (atan2/arccos, two Newton
-  polish steps) in one compiled pass; a competent user who knows this form writes the same closed form with numpy
-  (``_core.meshing.meshing_roots`` + ``polish_phi1``), so that is printed too, as a second baseline;
+  elementwise map the package uses). The package solves f = A cos phi1 + B sin phi1 + C in closed form
+  (atan2/arccos, two Newton polish steps) in one compiled pass; a competent user who knows this form writes the same
+  closed form with numpy (``_core.meshing.meshing_roots`` + ``polish_phi1``), so that is timed too, as a second
+  baseline;
 * contact line: evaluate f on a 64-point scan of v for all u at once, take the first sign change as bracket, then ONE
-  vectorized ``scipy.optimize.elementwise.find_root`` (Chandrupatla) call.
+  vectorized ``scipy.optimize.elementwise.find_root`` (Chandrupatla) call. The package scans the same way; its start
+  inside each bracket comes from the closed-form contact rotations of the bracket ends (exact on a log-spiral flank,
+  hence a second case on a reparametrized flank where it is not). Both sides are dominated by the shared scan.
 
 Run: ``python bench/bench_envelope.py``.
 """
@@ -78,26 +81,32 @@ def envelope_case(n_u, n_v):
     print(f"    same results: max |dphi1| {err_phi:.1e} rad, max |dr2| {err_pts:.1e} mm, max |dn2| {err_nrm:.1e}")
 
 
-def contact_line_case(n_u):
+def reparametrized(u, v):
+    """The same flank with v -> v + v^2 / 2: the contact-rotation angle is not linear in v, so the package's
+    closed-form start is not the root (its Newton has to iterate; a fairer case than the log-spiral's exact start)."""
+    return surface(u, v + 0.5 * v ** 2)
+
+
+def contact_line_case(n_u, surf=surface, hi=1.0, label=""):
     u = np.linspace(-0.3, 0.0, n_u)
     phi1 = 0.05
-    t_vec, cl = median_time(lambda: solve_contact_line(surface, KIN, phi1, u, (0.05, 1.0)), REPEAT, cpu=True)
+    t_vec, cl = median_time(lambda: solve_contact_line(surf, KIN, phi1, u, (0.05, hi)), REPEAT, cpu=True)
     assert cl.converged.all()
 
     def f(x, uu):
-        r, n = surface(uu, x)
+        r, n = surf(uu, x)
         return KIN.meshing_function(r, n, phi1)
 
     def baseline():
-        grid = np.linspace(0.05, 1.0, 64)
+        grid = np.linspace(0.05, hi, 64)
         vals = f(grid[None, :], u[:, None])
         j = np.argmax(vals[:, :-1] * vals[:, 1:] <= 0, axis=1)
         res = find_root(f, (grid[j], grid[j + 1]), args=(u,), tolerances=dict(xatol=1e-15, xrtol=0.0))
         return res.x
 
     t_base, v_ref = median_time(baseline, REPEAT, cpu=True)
-    report(f"contact line {n_u} pts", t_vec, t_base, "scan + vectorized scipy find_root", REPEAT)
-    print(f"    same roots: max |dv| {np.max(np.abs(cl.v - v_ref)):.1e} rad")
+    report(f"contact line {n_u} pts{label}", t_vec, t_base, "scan + vectorized scipy find_root", REPEAT)
+    print(f"    same roots: max |dv| {np.max(np.abs(cl.v - v_ref)):.1e} rad; Newton iterations {cl.iterations}")
 
 
 if __name__ == "__main__":
@@ -106,3 +115,4 @@ if __name__ == "__main__":
     envelope_case(31, 15)
     envelope_case(100, 100)
     contact_line_case(200)
+    contact_line_case(200, reparametrized, 0.8, " (reparametrized flank)")

@@ -268,8 +268,11 @@ def solve_contact_line(surface: Surface, kinematics: BevelPairKinematics, phi1: 
 
     Notes
     -----
-    Vectorized safeguarded Newton (Newton steps inside a sign-change bracket, bisection when a step leaves it or
-    stalls), derivative by forward differences; all u at once. Equation: docs/theory/gearing.md, Eq. (M5)
+    The scan evaluates f = A cos phi1 + B sin phi1 + C (docs/theory/gearing.md, Eq. (M5a)) for all u at once and
+    takes a sign-change bracket per u. The closed-form contact rotations of the bracket ends (Eq. (M5b)) give the
+    start: the secant of the contact-rotation angle, which is linear in v on a log-spiral flank and nearly so on
+    other flanks (``_core.meshing.angle_secant_start``). From there a vectorized safeguarded Newton (Newton steps
+    inside the bracket, bisection when a step leaves it or stalls, derivative by forward differences) finishes.
     """
     if solve_for not in ("u", "v"):
         raise DesignError.single("solve_for", solve_for, "'u' or 'v'", "-")
@@ -282,19 +285,30 @@ def solve_contact_line(surface: Surface, kinematics: BevelPairKinematics, phi1: 
     uu = np.atleast_1d(np.asarray(u, float)).ravel()
     g1 = kinematics.pitch_angle_pinion
 
-    def fun(uv_u, uv_v):
+    def coefficients(uv_u, uv_v, with_scale=False):
         r, n = evaluate_surface(surf, uv_u, uv_v, fd_step, orientation)
-        return _m.meshing_function(r, n, phi1, g1), np.linalg.norm(r, axis=-1)
+        A, B, C = _m.meshing_coefficients(r, n, g1)
+        return A, B, C, (np.linalg.norm(r, axis=-1) if with_scale else None)
 
+    def fun(uv_v):
+        A, B, C, _ = coefficients(uu, uv_v)
+        return A * c1 + B * s1 + C
+
+    c1, s1 = np.cos(phi1), np.sin(phi1)
     grid = np.linspace(lo_b, hi_b, int(n_scan))
-    fgrid, _ = fun(uu[:, None], grid[None, :])
-    lo, hi, flo, fhi, found = _m.bracket_scan(fgrid, grid, v0)
+    A, B, C, _ = coefficients(uu[:, None], grid[None, :])
+    fgrid = A * c1 + B * s1 + C
+    lo, hi, flo, fhi, found, idx = _m.bracket_scan(fgrid, grid, v0, return_index=True)
     if strict and not found.all():
         raise NoContactError(f"no contact at phi1 = {phi1:.12g} rad: f has no sign change on "
                              f"{solve_for} in [{lo_b:.12g}, {hi_b:.12g}] at " + _position(~found, ("u", uu)))
-    mid = 0.5 * (lo + hi)
-    _, scale = fun(uu, mid)
-    x, res, ok, it = _m.bracketed_newton(lambda vv: fun(uu, vv)[0], lo, hi, flo, fhi, scale, tol, max_iter)
+    rows = np.arange(uu.size)
+    ends = [_m.meshing_roots(A[rows, j], B[rows, j], C[rows, j])[:2] for j in (idx, idx + 1)]
+    x0 = _m.angle_secant_start(flo, fhi, ends[0], ends[1], lo, hi, phi1)
+    x0 = np.where(np.isfinite(x0), x0, np.where(flo == 0, lo, np.where(fhi == 0, hi, 0.5 * (lo + hi))))
+    A0, B0, C0, scale = coefficients(uu, x0, with_scale=True)
+    x, res, ok, it = _m.bracketed_newton(fun, lo, hi, flo, fhi, scale, tol, max_iter, x0=x0,
+                                         fx0=A0 * c1 + B0 * s1 + C0)
     converged = found & ok
     if strict and not converged.all():
         raise ConvergenceError(f"contact line at phi1 = {phi1:.12g} rad not converged at "
