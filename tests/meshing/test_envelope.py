@@ -232,11 +232,39 @@ def test_bad_arguments():
         solve_contact_line(case.surface, case.kin, 0.0, [0.0], (0.0, 1.0), solve_for="w")
 
 
+def _reparametrized(case):
+    """The same flank with v -> v + v^2 / 2: the contact-rotation angle is no longer linear in v, so the
+    closed-form secant start is not the root and the safeguarded Newton has to work."""
+    return lambda u, v: case.surface(u, v + 0.5 * v ** 2)
+
+
 def test_convergence_error_reports_iterations():
     case = make_case(*PAIRS[0])
     with pytest.raises(ConvergenceError) as err:
-        solve_contact_line(case.surface, case.kin, 0.0, [-0.2, -0.1], (1e-3, 1.0), max_iter=1)
+        solve_contact_line(_reparametrized(case), case.kin, 0.0, [-0.2, -0.1], (1e-3, 0.8), max_iter=1)
     assert err.value.iterations == 1 and err.value.residual > 0
+
+
+def test_contact_line_start_is_exact_on_logspiral_and_newton_finishes_elsewhere():
+    # log-spiral: the contact rotation phi1*(v) = +-c - u - v / sin d1 is linear in v (Eq. (M7)), so the secant of the
+    # angle between the bracket ends is the root (0 Newton iterations); on the reparametrized flank it is not, and the
+    # result must still equal a per-point brentq on the rotation-matrix form of f (same round-off bound as above)
+    case = make_case(*PAIRS[1])
+    u = np.linspace(-0.3, 0.0, 11)
+    cl = solve_contact_line(case.surface, case.kin, 0.05, u, (1e-3, 1.0))
+    assert cl.iterations == 0 and cl.converged.all()
+    surf = _reparametrized(case)
+    cl2 = solve_contact_line(surf, case.kin, 0.05, u, (1e-3, 0.8))
+    assert cl2.iterations > 0 and cl2.converged.all()
+    for k in range(u.size):
+        def f(vv, k=k):
+            r, n = surf(u[k], vv)
+            return float(case.kin.meshing_function(r, n, 0.05))
+
+        root = brentq(f, cl2.v[k] - 0.01, cl2.v[k] + 0.01, xtol=1e-15, rtol=1e-15)
+        assert abs(cl2.v[k] - root) < 1e-12
+    # the same contact points as on the original parametrization (points ~120 mm, roots to ~1e-15: measured 6e-14 mm)
+    assert np.max(np.abs(cl2.pinion_points - cl.pinion_points)) < 1e-12
 
 
 def test_rigid_rotation_of_the_flank_only_shifts_phi1():

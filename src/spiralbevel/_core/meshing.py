@@ -56,6 +56,38 @@ def pinion_to_gear(phi1, shaft_angle, ratio):
     return rot_y(-shaft_angle) @ rot_axis(gear_axis(shaft_angle), ratio * phi1) @ rot_z(phi1)
 
 
+def pinion_to_fixed_and_gear(vectors, phi1, shaft_angle, ratio):
+    """Pinion member vectors seen in the fixed frame and in the gear member frame, elementwise (no 3 x 3 stacks).
+
+    M = R_y(-S) R(a2, ratio phi1) R_z(phi1) = R_z(ratio phi1) R_y(-S) R_z(phi1), because R_y(-S) a2 = e_z
+    (R_y(-S) R(a2, t) R_y(S) = R(R_y(-S) a2, t)); the same map as :func:`pinion_to_gear` to round-off.
+
+    Parameters
+    ----------
+    vectors : sequence of (..., 3) float
+        Vectors in the pinion member frame (points in mm or unit normals).
+    phi1 : (...) float, rad
+        Pinion rotation (broadcast with the vectors' leading axes).
+
+    Returns
+    -------
+    fixed, gear : lists of (..., 3) float
+        R_z(phi1) v (fixed frame) and M v (gear member frame) for each vector.
+    """
+    phi1 = np.asarray(phi1, float)
+    c1, s1 = np.cos(phi1), np.sin(phi1)
+    ck, sk = np.cos(ratio * phi1), np.sin(ratio * phi1)
+    cS, sS = np.cos(shaft_angle), np.sin(shaft_angle)
+    fixed, gear = [], []
+    for v in vectors:
+        x, y, z = v[..., 0], v[..., 1], v[..., 2]
+        xf, yf = c1 * x - s1 * y, s1 * x + c1 * y
+        xa, za = cS * xf - sS * z, sS * xf + cS * z
+        fixed.append(np.stack([xf, yf, z * np.ones_like(xf)], -1))
+        gear.append(np.stack([ck * xa - sk * yf, sk * xa + ck * yf, za], -1))
+    return fixed, gear
+
+
 # --------------------------------------------------------------------------------------------- meshing equation
 def willis(r, n, p):
     """det[r, n, p] = (r x n) . p (mm for unit n), broadcasting over the leading axes."""
@@ -106,19 +138,20 @@ def wrap_near(x, ref):
 def polish_phi1(A, B, C, phi1, iterations=2):
     """Newton steps on A cos x + B sin x + C (analytic derivative), vectorized."""
     for _ in range(iterations):
-        f = A * np.cos(phi1) + B * np.sin(phi1) + C
-        df = -A * np.sin(phi1) + B * np.cos(phi1)
+        c, s = np.cos(phi1), np.sin(phi1)
+        f = A * c + B * s + C
+        df = B * c - A * s
         safe = np.abs(df) > 1e-300
         phi1 = phi1 - np.where(safe, f / np.where(safe, df, 1.0), 0.0)
     return phi1
 
 
 # --------------------------------------------------------------------------------------------- scalar roots
-def bracket_scan(fvals, grid, v0=None):
+def bracket_scan(fvals, grid, v0=None, return_index=False):
     """Choose a sign-change bracket per row of ``fvals (n, m)`` sampled at ``grid (m,)``.
 
     The bracket nearest to ``v0 (n,)`` is taken when given, the first from grid[0] otherwise.
-    Returns ``lo, hi, flo, fhi (n,)`` and ``found (n,) bool``.
+    Returns ``lo, hi, flo, fhi (n,)`` and ``found (n,) bool`` (and the grid index of ``lo`` when ``return_index``).
     """
     sgn = np.sign(fvals)
     change = (sgn[:, :-1] * sgn[:, 1:] <= 0) & np.isfinite(fvals[:, :-1]) & np.isfinite(fvals[:, 1:])
@@ -130,10 +163,37 @@ def bracket_scan(fvals, grid, v0=None):
         dist = np.where(change, np.abs(mid[None, :] - np.asarray(v0, float).reshape(-1, 1)), np.inf)
         idx = np.argmin(dist, axis=1)
     rows = np.arange(fvals.shape[0])
-    return grid[idx], grid[idx + 1], fvals[rows, idx], fvals[rows, idx + 1], found
+    out = grid[idx], grid[idx + 1], fvals[rows, idx], fvals[rows, idx + 1], found
+    return (*out, idx) if return_index else out
 
 
-def bracketed_newton(fun, lo, hi, flo, fhi, scale, tol, max_iter=60, rel_step=1e-7):
+def angle_secant_start(f_lo, f_hi, roots_lo, roots_hi, lo, hi, phi1):
+    """Start point inside each bracket from the closed-form contact rotations at its ends.
+
+    At fixed phi1 the meshing function f(v) changes sign between ``lo`` and ``hi``. The contact rotation of the
+    point at v, phi1*(v) (Eq. (M5b), ``roots_* = (plus, minus)`` at the ends), passes through phi1 there, and near its
+    root f has the sign of d+(v) = wrap(plus(v) - phi1) (branch +1, f' < 0) or of -d-(v) (branch -1). The branch whose
+    signed angle agrees with the signs of f at both ends is followed and the secant of that angle, which varies
+    slowly along a flank (linearly in v for a log-spiral flank), gives the start; NaN where no branch agrees or the
+    secant leaves the open bracket (the caller then starts at the midpoint).
+    """
+    best = np.full(np.shape(lo), np.nan)
+    width = np.full(np.shape(lo), np.inf)
+    for sgn, r_lo, r_hi in ((1.0, roots_lo[0], roots_hi[0]), (-1.0, roots_lo[1], roots_hi[1])):
+        g_lo = sgn * wrap_near(r_lo - phi1, 0.0)
+        g_hi = sgn * wrap_near(r_hi - phi1, 0.0)
+        agree = (np.sign(g_lo) == np.sign(f_lo)) & (np.sign(g_hi) == np.sign(f_hi)) & (g_lo != g_hi)
+        agree &= np.abs(g_hi - g_lo) < np.pi  # the angle does not wrap across the bracket
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = lo - g_lo * (hi - lo) / (g_hi - g_lo)
+        agree &= np.isfinite(x) & (x > np.minimum(lo, hi)) & (x < np.maximum(lo, hi))
+        take = agree & (np.abs(g_hi - g_lo) < width)
+        best = np.where(take, x, best)
+        width = np.where(take, np.abs(g_hi - g_lo), width)
+    return best
+
+
+def bracketed_newton(fun, lo, hi, flo, fhi, scale, tol, max_iter=60, rel_step=1e-7, x0=None, fx0=None):
     """Safeguarded Newton (rtsafe) on many scalar equations at once, each with a sign-change bracket.
 
     Parameters
@@ -146,14 +206,23 @@ def bracketed_newton(fun, lo, hi, flo, fhi, scale, tol, max_iter=60, rel_step=1e
         Residual scale; convergence when |f| / scale <= tol or the bracket is narrower than 4 eps |x|.
     tol : float
         Relative residual tolerance.
+    x0, fx0 : (n,) float, optional
+        A start inside the bracket and its residual (NaN entries: the midpoint); the bracket is shrunk to the side of
+        the start that keeps the sign change.
 
     Returns
     -------
     x, residual (|f| / scale), converged, iterations
     """
     lo, hi, flo, fhi = (np.array(a, float) for a in (lo, hi, flo, fhi))
-    x = np.where(flo == 0, lo, np.where(fhi == 0, hi, 0.5 * (lo + hi)))
-    fx = fun(x)
+    if x0 is None:
+        x = np.where(flo == 0, lo, np.where(fhi == 0, hi, 0.5 * (lo + hi)))
+        fx = fun(x)
+    else:
+        x, fx = np.array(x0, float), np.array(fx0, float)
+        same_lo = np.sign(fx) == np.sign(flo)
+        lo, flo = np.where(same_lo, x, lo), np.where(same_lo, fx, flo)
+        hi, fhi = np.where(~same_lo, x, hi), np.where(~same_lo, fx, fhi)
     it = 0
     width_tol = 4 * np.finfo(float).eps * np.maximum(1.0, np.abs(x))
     done = (np.abs(fx) <= tol * scale) | (np.abs(hi - lo) <= width_tol)
@@ -245,6 +314,7 @@ def reduce_periodic(values, period, ref=None):
 
 __all__ = [
     "pitch_angles", "gear_axis", "pitch_line", "pinion_to_fixed", "gear_to_fixed", "pinion_to_gear",
+    "pinion_to_fixed_and_gear",
     "willis", "meshing_function", "meshing_coefficients", "meshing_roots", "wrap_near", "polish_phi1",
-    "bracket_scan", "bracketed_newton", "fd_normals", "logspiral_invariant", "reduce_periodic",
+    "bracket_scan", "angle_secant_start", "bracketed_newton", "fd_normals", "logspiral_invariant", "reduce_periodic",
 ]

@@ -27,7 +27,7 @@ from typing import Callable, Literal
 import numpy as np
 
 from .._core import meshing as _m
-from .._core.rotations import apply
+from .._core.envelope_kernel import envelope_points
 from ..conventions import TOL
 from ..errors import ConvergenceError, DesignError, NoContactError
 from .kinematics import BevelPairKinematics
@@ -160,32 +160,19 @@ def solve_envelope(surface: Surface, kinematics: BevelPairKinematics, u, v, *, b
     Notes
     -----
     For constant-ratio rotation about a1 the meshing function is exactly f = A cos phi1 + B sin phi1 + C with
-    (A, B, C) from q = r1 x n1 (docs/theory/gearing.md, Eq. (M5)), so both roots are found in closed form for all points
-    at once and then
-    polished by two vectorized Newton steps with the analytic derivative; the residual is re-evaluated with the
-    rotation-matrix form of f.
+    (A, B, C) from q = r1 x n1 (docs/theory/gearing.md, Eqs. (M5a)-(M5b)), so both roots are found in closed form for
+    all points at once (atan2 and arccos, no iteration) and then polished by two Newton steps with the analytic
+    derivative (the arccos loses digits near a tangent root, |C| close to hypot(A, B)). The conjugate points and
+    normals are mapped with the elementwise form M = R_z((z1/z2) phi1) R_y(-S) R_z(phi1) of Eq. (M6). Roots, polish,
+    residual and maps run in one compiled pass over the points (``_core/envelope_kernel.py``).
     """
     if branch not in (1, -1, None):
         raise DesignError.single("branch", branch, "+1, -1 or None", "-")
     r1, n1 = evaluate_surface(surface, u, v, fd_step, orientation)
     u_b, v_b = np.broadcast_arrays(np.asarray(u, float), np.asarray(v, float))
-    g1 = kinematics.pitch_angle_pinion
-    A, B, C = _m.meshing_coefficients(r1, n1, g1)
-    plus, minus, exists = _m.meshing_roots(A, B, C)
-    guess = np.broadcast_to(np.asarray(phi1_guess, float), exists.shape)
-    if branch == 1:
-        root = plus
-    elif branch == -1:
-        root = minus
-    else:
-        dp = np.abs(_m.wrap_near(plus, guess) - guess)
-        dm = np.abs(_m.wrap_near(minus, guess) - guess)
-        root = np.where(dp <= dm, plus, minus)
-    root = np.where(exists, root, guess)
-    phi1 = _m.wrap_near(_m.polish_phi1(A, B, C, root), guess)
-    scale = np.maximum(np.linalg.norm(r1, axis=-1), np.finfo(float).tiny)
-    residual = np.abs(kinematics.meshing_function(r1, n1, phi1)) / scale
-    converged = exists & (residual <= tol)
+    phi1, residual, exists, converged, points, normals, fixed = envelope_points(
+        r1, n1, phi1_guess, 0 if branch is None else branch, kinematics.pitch_angle_pinion, kinematics.shaft_angle,
+        kinematics.ratio, tol)
     if strict and not exists.all():
         raise NoContactError("no contact: the meshing equation has no root at "
                              + _position(~exists, ("u", u_b), ("v", v_b)))
@@ -193,13 +180,11 @@ def solve_envelope(surface: Surface, kinematics: BevelPairKinematics, u, v, *, b
         bad = ~converged
         raise ConvergenceError("meshing equation not solved at " + _position(bad, ("u", u_b), ("v", v_b)),
                                iterations=2, residual=float(np.max(residual[bad])), last=phi1)
-    nan = np.where(converged, 0.0, np.nan)
-    phi1 = phi1 + nan
-    M = kinematics.pinion_to_gear(phi1)
+    phi1 = np.where(converged, phi1, np.nan)
     return EnvelopeResult(
         u=u_b, v=v_b, phi1=phi1, phi2=kinematics.gear_angle(phi1),
-        points=apply(M, r1), normals=-apply(M, n1), pinion_points=r1, pinion_normals=n1,
-        contact_points=apply(kinematics.pinion_to_fixed(phi1), r1), residual=residual, converged=converged,
+        points=points, normals=normals, pinion_points=r1, pinion_normals=n1,
+        contact_points=fixed, residual=residual, converged=converged,
         branch=branch,
     )
 
@@ -283,8 +268,11 @@ def solve_contact_line(surface: Surface, kinematics: BevelPairKinematics, phi1: 
 
     Notes
     -----
-    Vectorized safeguarded Newton (Newton steps inside a sign-change bracket, bisection when a step leaves it or
-    stalls), derivative by forward differences; all u at once. Equation: docs/theory/gearing.md, Eq. (M5)
+    The scan evaluates f = A cos phi1 + B sin phi1 + C (docs/theory/gearing.md, Eq. (M5a)) for all u at once and
+    takes a sign-change bracket per u. The closed-form contact rotations of the bracket ends (Eq. (M5b)) give the
+    start: the secant of the contact-rotation angle, which is linear in v on a log-spiral flank and nearly so on
+    other flanks (``_core.meshing.angle_secant_start``). From there a vectorized safeguarded Newton (Newton steps
+    inside the bracket, bisection when a step leaves it or stalls, derivative by forward differences) finishes.
     """
     if solve_for not in ("u", "v"):
         raise DesignError.single("solve_for", solve_for, "'u' or 'v'", "-")
@@ -297,19 +285,30 @@ def solve_contact_line(surface: Surface, kinematics: BevelPairKinematics, phi1: 
     uu = np.atleast_1d(np.asarray(u, float)).ravel()
     g1 = kinematics.pitch_angle_pinion
 
-    def fun(uv_u, uv_v):
+    def coefficients(uv_u, uv_v, with_scale=False):
         r, n = evaluate_surface(surf, uv_u, uv_v, fd_step, orientation)
-        return _m.meshing_function(r, n, phi1, g1), np.linalg.norm(r, axis=-1)
+        A, B, C = _m.meshing_coefficients(r, n, g1)
+        return A, B, C, (np.linalg.norm(r, axis=-1) if with_scale else None)
 
+    def fun(uv_v):
+        A, B, C, _ = coefficients(uu, uv_v)
+        return A * c1 + B * s1 + C
+
+    c1, s1 = np.cos(phi1), np.sin(phi1)
     grid = np.linspace(lo_b, hi_b, int(n_scan))
-    fgrid, _ = fun(uu[:, None], grid[None, :])
-    lo, hi, flo, fhi, found = _m.bracket_scan(fgrid, grid, v0)
+    A, B, C, _ = coefficients(uu[:, None], grid[None, :])
+    fgrid = A * c1 + B * s1 + C
+    lo, hi, flo, fhi, found, idx = _m.bracket_scan(fgrid, grid, v0, return_index=True)
     if strict and not found.all():
         raise NoContactError(f"no contact at phi1 = {phi1:.12g} rad: f has no sign change on "
                              f"{solve_for} in [{lo_b:.12g}, {hi_b:.12g}] at " + _position(~found, ("u", uu)))
-    mid = 0.5 * (lo + hi)
-    _, scale = fun(uu, mid)
-    x, res, ok, it = _m.bracketed_newton(lambda vv: fun(uu, vv)[0], lo, hi, flo, fhi, scale, tol, max_iter)
+    rows = np.arange(uu.size)
+    ends = [_m.meshing_roots(A[rows, j], B[rows, j], C[rows, j])[:2] for j in (idx, idx + 1)]
+    x0 = _m.angle_secant_start(flo, fhi, ends[0], ends[1], lo, hi, phi1)
+    x0 = np.where(np.isfinite(x0), x0, np.where(flo == 0, lo, np.where(fhi == 0, hi, 0.5 * (lo + hi))))
+    A0, B0, C0, scale = coefficients(uu, x0, with_scale=True)
+    x, res, ok, it = _m.bracketed_newton(fun, lo, hi, flo, fhi, scale, tol, max_iter, x0=x0,
+                                         fx0=A0 * c1 + B0 * s1 + C0)
     converged = found & ok
     if strict and not converged.all():
         raise ConvergenceError(f"contact line at phi1 = {phi1:.12g} rad not converged at "
@@ -317,11 +316,12 @@ def solve_contact_line(surface: Surface, kinematics: BevelPairKinematics, phi1: 
                                residual=float(np.max(res[~converged])), last=x)
     x = np.where(converged, x, np.nan)
     r1, n1 = evaluate_surface(surf, uu, x, fd_step, orientation)
-    M = kinematics.pinion_to_gear(phi1)
+    (fixed, _), (points, normals) = _m.pinion_to_fixed_and_gear((r1, n1), phi1, kinematics.shaft_angle,
+                                                                kinematics.ratio)
     uo, vo = (uu, x) if solve_for == "v" else (x, uu)
     return ContactLineResult(
         phi1=float(phi1), phi2=float(kinematics.gear_angle(phi1)), u=uo, v=vo, pinion_points=r1,
-        pinion_normals=n1, points=apply(M, r1), normals=-apply(M, n1),
-        contact_points=apply(kinematics.pinion_to_fixed(phi1), r1), residual=res, converged=converged,
+        pinion_normals=n1, points=points, normals=-normals,
+        contact_points=fixed, residual=res, converged=converged,
         iterations=it,
     )

@@ -156,5 +156,9 @@ class BevelPairKinematics:
         return apply(self.pinion_to_fixed(phi1), np.asarray(r1, float))
 
     def to_gear(self, r1, phi1):
-        """Pinion member coordinates -> gear member coordinates at the meshing position phi1, ``(..., 3)``."""
-        return apply(self.pinion_to_gear(phi1), np.asarray(r1, float))
+        """Pinion member coordinates -> gear member coordinates at the meshing position phi1, ``(..., 3)``.
+
+        Elementwise form of :meth:`pinion_to_gear`, M = R_z((z1/z2) phi1) R_y(-S) R_z(phi1) (the same map to
+        round-off, without building a 3 x 3 matrix per point).
+        """
+        return _m.pinion_to_fixed_and_gear((np.asarray(r1, float),), phi1, self.shaft_angle, self.ratio)[1][0]
