@@ -69,8 +69,8 @@ def panel_title(ax, label: str, **kwargs):
 
 
 #: nodes along each direction of a grid drawn with Gouraud shading: 40 cells of a 4-6 inch panel at 100 dpi are about
-#: 10 pixels each, where the linear colour interpolation of a smooth field inside a cell matches the finer grid to a
-#: fraction of one of the colour map's 256 levels
+#: 10 pixels each, where the linear colour interpolation of a smooth field inside a cell stays within a few levels of
+#: the finer grid's colours (at most 8 of 255 per channel inside the bundled example's draft maps)
 DISPLAY_NODES = 41
 
 
