@@ -96,7 +96,7 @@ def display_subgrid(*arrays, nodes: int = DISPLAY_NODES):
     """
     import numpy as np
 
-    arrays = [np.asarray(a) for a in arrays]
-    n, m = arrays[0].shape[:2]
+    grids = [np.asarray(a) for a in arrays]
+    n, m = grids[0].shape[:2]
     rows, cols = (np.unique(np.round(np.linspace(0, k - 1, min(k, nodes))).astype(int)) for k in (n, m))
-    return tuple(a[np.ix_(rows, cols)] for a in arrays)
+    return tuple(a[np.ix_(rows, cols)] for a in grids)
