@@ -207,6 +207,19 @@ def _pair_ratio(phi_a, dvarphi, p, psi_lo, psi_hi, domain, R, h):
     return float(np.max(arc / stepover_for_scallop(R, h, kappa)))
 
 
+def _memo(f):
+    """``f`` that evaluates each argument once: the march asks for the ratio at the bracket's end twice before
+    ``brentq``, which asks for both ends again (about a quarter of the evaluations of a plan, the same numbers)."""
+    seen: dict = {}
+
+    def g(x):
+        if x not in seen:
+            seen[x] = f(x)
+        return seen[x]
+
+    return g
+
+
 def _march(p, psi_lo, psi_hi, domain, R, h, max_paths):
     """varphi of the passes from the first to the last corner of the (extended) parallelogram."""
     s = math.sin(p.delta)
@@ -216,7 +229,7 @@ def _march(p, psi_lo, psi_hi, domain, R, h, max_paths):
     guess = 0.01 * (psi_hi - psi_lo) / s
     while out[-1] < end:
         a = out[-1]
-        f = lambda d, a=a: _pair_ratio(a, d, p, psi_lo, psi_hi, domain, R, h) - 1.0  # noqa: E731
+        f = _memo(lambda d, a=a: _pair_ratio(a, d, p, psi_lo, psi_hi, domain, R, h) - 1.0)
         rest = end - a
         if rest <= 1e-12 * (end - start):  # the last pass is (numerically) the end corner
             out[-1] = end

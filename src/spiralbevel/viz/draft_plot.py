@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from .layout import fixed_layout, legend_among_lines
+from .layout import display_subgrid, fixed_layout, legend_among_lines, panel_title
 
 __all__ = ["plot_draft"]
 
@@ -66,7 +66,7 @@ def plot_draft(result, ax=None, coords: str = "varphi", limit: float = 0.0, titl
     lim = float(limit) * deg
     span = max(float(np.max(np.abs(a - lim))), 1e-6)
     norm = TwoSlopeNorm(vcenter=lim, vmin=lim - span, vmax=lim + span)
-    mesh = ax.pcolormesh(x, y, a, shading="gouraud", cmap="RdYlGn", norm=norm)
+    mesh = ax.pcolormesh(*display_subgrid(x, y, a), shading="gouraud", cmap="RdYlGn", norm=norm)
     cb = fig.colorbar(mesh, ax=ax, label="draft angle [deg]")
     cb.ax.axhline(lim, color="k", lw=1.5)
     handles: list[Any] = []
@@ -86,7 +86,7 @@ def plot_draft(result, ax=None, coords: str = "varphi", limit: float = 0.0, titl
     ax.set_ylabel("spiral parameter ϕ [deg]")
     if title is None:
         title = f"{result.side.value} flank: " + _verdict(result, lim)
-    ax.set_title("\n".join(textwrap.wrap(title, 58)), fontsize=9)   # at most the panel's width
+    panel_title(ax, "\n".join(textwrap.wrap(title, 58)), fontsize=9)   # at most the panel's width
     legend_among_lines(ax, handles=handles, fontsize=7)
     return fig
 

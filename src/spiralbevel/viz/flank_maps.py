@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .layout import fixed_layout
+from .layout import fixed_layout, panel_title
 
 
 def projected(points):
@@ -49,7 +49,7 @@ def plot_flank_fields(panels, title="", cmap="coolwarm", symmetric=True):
         kw = dict(vmin=-vmax, vmax=vmax) if symmetric and vmax > 0 else {}
         mesh = ax.pcolormesh(z, r, vals, shading="gouraud", cmap=cmap, **kw)
         _outline(ax, z, r)
-        ax.set_title(label, fontsize=9)
+        panel_title(ax, label, fontsize=9)
         ax.set_xlabel("axial position z [mm]")
         ax.set_ylabel("radius [mm]")
         ax.set_aspect("equal", adjustable="datalim")
@@ -82,7 +82,7 @@ def plot_domain_fields(panels, title="", ncols=4):
     fig, axes = plt.subplots(rows, ncols, figsize=(4.25 * ncols, 3.75 * rows), squeeze=False)
     for ax, (label, x, y, vals, xlabel, ylabel, unit) in zip(axes.flat, panels):
         mesh = ax.pcolormesh(x, y, vals, shading="gouraud", cmap="viridis")
-        ax.set_title(label, fontsize=9)
+        panel_title(ax, label, fontsize=9)
         ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel)
         fig.colorbar(mesh, ax=ax, label=unit, shrink=0.85)

@@ -1,5 +1,6 @@
 """Subplot layout from fixed margins in inches: one ``subplots_adjust`` instead of ``tight_layout``'s measuring pass
-(which lays out every tick label and title once more before the figure is drawn)."""
+(which lays out every tick label and title once more before the figure is drawn), and panel titles at a fixed
+height."""
 
 from __future__ import annotations
 
@@ -53,3 +54,49 @@ def legend_among_lines(ax, **kwargs):
 
     legend._auto_legend_data = without_meshes
     return legend
+
+
+def panel_title(ax, label: str, **kwargs):
+    """``ax.set_title(label, **kwargs)`` at the top edge of the panel (``y=1``), not re-placed at each draw.
+
+    By default matplotlib places a title anew on every draw: it measures the tick labels of the x axis (when they may
+    sit on top) and the y axis of the panel and its siblings, to lift the title above top-side tick labels or the y
+    axis' offset text ("1e-3" above the axis). The panels of this package have neither, so the title stays at the top
+    edge, where the measurement would put it; fixing it saves about a fifth of the drawing time of a map figure.
+    Not for a panel with a y axis that may carry an offset text (values far from 0 with a small spread).
+    """
+    return ax.set_title(label, y=1.0, **kwargs)
+
+
+#: nodes along each direction of a grid drawn with Gouraud shading: 40 cells of a 4-6 inch panel at 100 dpi are about
+#: 10 pixels each, where the linear colour interpolation of a smooth field inside a cell stays within a few levels of
+#: the finer grid's colours (at most 8 of 255 per channel inside the bundled example's draft maps)
+DISPLAY_NODES = 41
+
+
+def display_subgrid(*arrays, nodes: int = DISPLAY_NODES):
+    """The arrays of an (n, m) grid thinned to at most ``nodes`` rows and columns for a Gouraud-shaded map.
+
+    The cost of drawing ``pcolormesh(..., shading="gouraud")`` grows with the number of cells, not with the pixels
+    they cover: a 101 x 101 draft map takes 50-60 ms per panel in Agg, its 41 x 41 subgrid a sixth of that. The
+    first and last rows and columns are kept (same outline and data limits); compute on the full grid (contours,
+    colour limits) and draw the colours from this.
+
+    Parameters
+    ----------
+    *arrays : (n, m) array_like
+        Coordinates and values on the same grid.
+    nodes : int
+        Most rows and columns kept.
+
+    Returns
+    -------
+    tuple of (n', m') ndarray
+        The same arrays on rows and columns evenly spread over the grid, n' = min(n, nodes), m' = min(m, nodes).
+    """
+    import numpy as np
+
+    grids = [np.asarray(a) for a in arrays]
+    n, m = grids[0].shape[:2]
+    rows, cols = (np.unique(np.round(np.linspace(0, k - 1, min(k, nodes))).astype(int)) for k in (n, m))
+    return tuple(a[np.ix_(rows, cols)] for a in grids)
