@@ -28,6 +28,7 @@ from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
 from spiralbevel.job.blank import blank_from_design
 from spiralbevel.job.tca import run_pair_tca
+from spiralbevel.gearset.slot_check import slot_checks
 
 TEMPLATE = """
 title = "sample"
@@ -69,7 +70,8 @@ def sample(rng):
 def develop(text, beta):
     """(None, checks) when the design is developed, else (the failure message, None). ``checks``: the largest
     deviation (deg) of the four flanks' mean-point pressure and spiral angles from the design (20 deg, ``beta``), and
-    whether the TCA shows an edge contact (bearing off a flank) at some position."""
+    whether the TCA shows an edge contact (bearing off a flank) at some position, whether every cutter fits its tooth
+    space (``gearset.slot_check``) and whether a derived point width had to be refitted for that."""
     spec = parse_design(text)
     blank = blank_from_design(spec)
     setups = fm.setup_flanks(spec, blank)
@@ -86,13 +88,16 @@ def develop(text, beta):
     dev = max(max(abs(math.degrees(st.flank.mean_point().pressure_angle) - 20.0),
                   abs(math.degrees(st.flank.mean_point().spiral_angle) - beta)) for st in setups.values())
     edge = any(section[n]["edge_contact_positions_deg"] for n in ("drive", "coast"))
-    return None, (dev, edge)
+    slot = slot_checks(blank, setups)
+    slot_ok = all(not isinstance(r, Exception) and r.fits for r in slot.values())
+    refit = any("fitted to the tooth space" in st.source for st in setups.values())
+    return None, (dev, edge, slot_ok, refit)
 
 
 def main(n=40, seed=1, part=0, parts=1):
     rng = np.random.default_rng(seed)
     ok, reasons, crashes = 0, collections.Counter(), []
-    n_angles = n_inside = 0
+    n_angles = n_inside = n_slot = n_refit = n_refit_ok = n_every = 0
     t0, c0 = time.perf_counter(), time.process_time()
     n_run = 0
     for i in range(n):
@@ -111,13 +116,19 @@ def main(n=40, seed=1, part=0, parts=1):
             why = f"UNCAUGHT {type(err).__name__}: {err}"
             crashes.append(label)
         extra = "" if checks is None else (f", angles within {checks[0]:.3f} deg of the design"
-                                           f"{', edge contact' if checks[1] else ', bearing inside the flanks'}")
+                                           f"{', edge contact' if checks[1] else ', bearing inside the flanks'}"
+                                           f"{', cutters fit' if checks[2] else ', a CUTTER DOES NOT FIT the slot'}"
+                                           f"{' (point width refitted)' if checks[3] else ''}")
         print(f"  {'developed' if why is None else 'NOT developed'} ({time.perf_counter() - t1:.1f} s): {label}{extra}",
               flush=True)
         if why is None:
             ok += 1
             n_angles += checks[0] <= 0.05
             n_inside += not checks[1]
+            n_slot += checks[2]
+            n_refit += checks[3]
+            n_refit_ok += checks[3] and checks[2]
+            n_every += checks[0] <= 0.05 and not checks[1] and checks[2]
         else:
             reasons[why.split(":")[0] + ": " + why.split(":", 1)[-1][:110]] += 1
             print(f"  not developed: {label}: {why[:200]}")
@@ -126,7 +137,9 @@ def main(n=40, seed=1, part=0, parts=1):
     print(f"developed {ok} of {n} designs ({100.0 * ok / n:.0f} %), {dt / n:.2f} s per design (wall), "
           f"{dc / n:.2f} s CPU per design")
     print(f"  of these: mean-point angles of all four flanks within 0.05 deg of the design: {n_angles}; bearing "
-          f"inside both flanks (no edge contact in the 21-position TCA of either side): {n_inside}")
+          f"inside both flanks (no edge contact in the 21-position TCA of either side): {n_inside}; every cutter "
+          f"fits its tooth space: {n_slot} (a derived point width refitted in {n_refit}, of which {n_refit_ok} then "
+          f"fit); meeting every check (angles, bearing, slot): {n_every}")
     for why, k in reasons.most_common():
         print(f"  {k:3d} x {why}")
     if crashes:
