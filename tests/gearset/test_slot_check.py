@@ -39,8 +39,9 @@ def _other(s):
 def test_interpolation_matches_exact_solve_on_opposite_flank(basic, m, s):
     """Each intrusion of the grid check against the opposite flank's own point on the same circle (axial position,
     radius) about the member axis, located by Newton's method (``ToothFlank.locate``), placed in the space by the
-    assembled tooth: same arc. 2e-3 mm: the check interpolates the opposite flank's azimuth linearly along 13 fillet
-    rows (chord error of a 1.3 mm edge radius over 1/12 of its arc ~ 1e-3 mm) and 7 blade rows."""
+    assembled tooth: same distance (arc times |n . e_phi|). 2e-3 mm: the check interpolates the opposite flank's
+    azimuth and normal linearly along 13 fillet rows and 15 blade rows (7 blade rows gave 2.7e-3 mm next to the
+    junction, where the profile's curvature jumps)."""
     spec, blank, setups = basic
     val, R, h, opp = sc.intrusion_field(blank, setups, m, s)
     A, B = setups[(m, s)], setups[(m, _other(s))]
@@ -60,15 +61,16 @@ def test_interpolation_matches_exact_solve_on_opposite_flank(basic, m, s):
                       np.sin(shift) * fb.normals[:, 0] + np.cos(shift) * fb.normals[:, 1]], -1)
     into = -np.sign(np.sum(n_rot * t, -1))
     exact = into * (np.remainder(az_a - az_b + math.pi, 2 * math.pi) - math.pi) * r * np.abs(np.sum(n_rot * t, -1))
-    print(np.sort(np.abs(exact - val[ok]))[-10:])
-    assert np.max(np.abs(exact - val[ok])) < 2e-3
+    on = fb.u >= B.cutter.fillet_range[0] - 1e-9      # Newton may land on the cutter's extension past its tip
+    assert on.mean() > 0.7
+    assert np.max(np.abs(exact - val[ok])[on]) < 2e-3
 
 
 @pytest.mark.parametrize("m,s", [(Member.PINION, Side.CONVEX), (Member.GEAR, Side.CONCAVE)])
 def test_spread_blade_cut_gives_the_closed_form(basic, m, s):
     """Cut the opposite flank with the opposite blade of the same cutter at the same settings (a spread-blade cut):
-    the check's surface is then that flank itself, turned only by the tooth assembly, so the intrusion is r times the
-    difference between the cut space angle (the mean points' azimuth gap, as generated) and the assembled one, which
+    the check's surface is then that flank itself, turned only by the tooth assembly, so the intrusion is
+    r |n . e_phi| times the difference between the cut space angle (the mean points' azimuth gap, as generated) and the assembled one, which
     ``tooth_rotation`` makes 2 pi / z - s_mn / (cos beta_m r_m). 1e-3 mm: the interpolation (test above)."""
     spec, blank, setups = basic
     A, B = setups[(m, s)], setups[(m, _other(s))]
@@ -85,11 +87,13 @@ def test_spread_blade_cut_gives_the_closed_form(basic, m, s):
     i, z = m.index, (blank.z1 if m is Member.PINION else blank.z2)
     gap_assembled = 2 * math.pi / z - getattr(blank, f"smn{i}") / math.cos(getattr(blank, f"beta_m{i}")) / r_m
     fa = generate_flank(sc.opposite_blade(A.cutter, B.cutter), A.settings, blank, m, _other(s))
-    pa = fa.grid(sc.SLOT_STATIONS, 2, n_fillet=sc.SLOT_FILLET_ROWS, curvature=False).points[:, :sc.SLOT_FILLET_ROWS]
+    g = fa.grid(sc.SLOT_STATIONS, 2, n_fillet=sc.SLOT_FILLET_ROWS, curvature=False)
+    pa, na = g.points[:, :sc.SLOT_FILLET_ROWS], g.normals[:, :sc.SLOT_FILLET_ROWS]
     r = np.hypot(pa[..., 0], pa[..., 1])
+    c = np.abs(-na[..., 0] * pa[..., 1] / r + na[..., 1] * pa[..., 0] / r)      # |n . e_phi|
     ok = np.isfinite(val)
-    assert ok.mean() > 0.9
-    assert np.max(np.abs(val[ok] - (gap_cut - gap_assembled) * r[ok])) < 1e-3
+    assert ok.mean() > 0.85      # the tip row lies on the flank's own root: at or just below it
+    assert np.max(np.abs(val[ok] - (gap_cut - gap_assembled) * r[ok] * c[ok])) < 1e-3
 
 
 def test_too_wide_cutter_is_flagged_with_its_key(basic):
@@ -116,15 +120,14 @@ def test_too_wide_cutter_is_flagged_with_its_key(basic):
 
 def test_fit_cures_the_derived_cutters_without_changing_a_flank(basic):
     """The derived point width (the slot width at the root in the mean section) intrudes toward the toe and heel,
-    where the separately generated sides narrow the slot; the refit makes every side fit with ``SLOT_CLEARANCE_MM``
-    and leaves every working flank as it was (the generation kernel does not see W)."""
+    where the separately generated sides narrow the slot; the refit makes every side fit and leaves every working flank as it was (the generation kernel does not see W)."""
     spec, blank, setups = basic
     st = dict(setups)
     fitted = sc.fit_point_widths(spec, blank, st)
     assert fitted            # the derived widths of this design do intrude (measured 0.21-0.26 mm at toe/heel)
     for k in ALL:
         res = sc.slot_fit(blank, st, *k)
-        assert res.intrusion <= -sc.SLOT_CLEARANCE_MM + 1e-3     # brentq's xtol on W, 1e-3 mm
+        assert res.fits and res.intrusion <= sc.SLOT_FIT_MM + 1e-3     # brentq's xtol on W, 1e-3 mm
         mp0, mp1 = setups[k].flank.mean_point(), st[k].flank.mean_point()
         np.testing.assert_allclose(mp1.point, mp0.point, atol=1e-9)
     for k, (w0, w) in fitted.items():
@@ -134,14 +137,14 @@ def test_fit_cures_the_derived_cutters_without_changing_a_flank(basic):
 def _junction_brute_force(flank, R):
     """Height above the root cone of the generated junction line (blade parameter u_j) at cone distances R, by a
     scan: for 4001 cradle angles, the cutter angles of the junction circle where the equation of meshing (seed 001
-    Eq. (13), ``meshing_residual``) changes sign, found on a 721-point scan and refined by bisection, the one nearest
+    Eq. (13), ``meshing_residual``) changes sign, found on a 181-point scan and refined by bisection, the one nearest
     the reference angle taken; the generated points' (R, h) interpolated at R."""
     gen, ol = flank.generator, flank.outline
     uj = gen.cp["u_j"]
     mp = flank.mean_point()
     psi = mp.psi_c + np.linspace(-0.6, 0.6, 4001)
     ref = gen.reference_angle(psi)
-    phi = ref[:, None] + np.linspace(-1.5, 1.5, 721)[None, :]
+    phi = ref[:, None] + np.linspace(-1.5, 1.5, 181)[None, :]
 
     def f(ph):
         return gen.meshing_residual(uj, ph - (np.pi - gen.mp["q"] + psi[:, None]), psi[:, None])

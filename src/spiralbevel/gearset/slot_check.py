@@ -22,8 +22,8 @@ flank's azimuth and normal interpolated along its generated profile (fillet and 
 slot's bottom (whose depth the root-cone check judges), not the flank.
 
 The generated flank itself does not depend on W (the kernel sees only the cutting blade), so a derived point width
-that intrudes is refitted without changing any flank: the largest W at which the opposite blade keeps
-``SLOT_CLEARANCE_MM`` from the opposite flank everywhere, the edge radius reduced only if the narrower point cannot
+that intrudes is refitted without changing any flank: the largest W at which the opposite blade intrudes nowhere by
+more than ``SLOT_FIT_MM``, the edge radius reduced only if the narrower point cannot
 hold it (then the fillet of the flank is generated again). A point width from the design file is kept and the check
 names its key.
 """
@@ -40,18 +40,19 @@ from ..conventions import Member, Side
 from ..errors import DesignError, GeometryError
 
 __all__ = ["SlotFit", "opposite_blade", "intrusion_field", "slot_fit", "slot_checks", "slot_report",
-           "fit_point_widths", "SLOT_STATIONS", "SLOT_FILLET_ROWS", "SLOT_TOL_MM", "SLOT_CLEARANCE_MM"]
+           "fit_point_widths", "SLOT_STATIONS", "SLOT_FILLET_ROWS", "SLOT_TOL_MM", "SLOT_FIT_MM"]
 
 #: face stations (toe and heel included) and fillet rows (tip line to junction) of the opposite blade's surface
 SLOT_STATIONS = 11
 SLOT_FILLET_ROWS = 9
 #: rows of the opposite flank's profile used for the interpolation: fillet rows, and blade rows up to the face cone
-_B_FILLET_ROWS, _B_PROFILE_ROWS = 13, 7
+_B_FILLET_ROWS, _B_PROFILE_ROWS = 33, 15
 #: an intrusion above this is reported (mm): the interpolation along the opposite flank's profile is exact to about
 #: 2e-3 mm (tests/gearset/test_slot_check.py), and 0.005 mm is below the flank tolerance of any accuracy grade
 SLOT_TOL_MM = 0.005
-#: clearance (mm) a refitted point width leaves between the opposite blade and the opposite flank
-SLOT_CLEARANCE_MM = 0.01
+#: largest intrusion (mm) a refitted point width leaves: half the reported level (the opposite blade's tip meets the
+#: opposite flank's root edge tangentially, so no clearance can be asked for there)
+SLOT_FIT_MM = 0.5 * SLOT_TOL_MM
 
 
 @dataclass(frozen=True)
@@ -246,12 +247,12 @@ def _point_width_key(spec, member, side) -> str:
 
 
 def _largest_fitting_width(blank, setups, member, side, w0: float) -> float | None:
-    """Largest point width (mm) in (0.2 w0, w0] whose opposite blade keeps ``SLOT_CLEARANCE_MM`` from the opposite
-    flank, by Brent's method to 1e-3 mm; ``None`` when even 0.2 w0 intrudes."""
+    """Largest point width (mm) in (0.2 w0, w0] whose opposite blade intrudes by at most ``SLOT_FIT_MM``, by Brent's
+    method to 1e-3 mm; ``None`` when even 0.2 w0 intrudes."""
     from scipy.optimize import brentq
 
     def room(w):
-        return -SLOT_CLEARANCE_MM - slot_fit(blank, setups, member, side, w).intrusion
+        return SLOT_FIT_MM - slot_fit(blank, setups, member, side, w).intrusion
 
     lo = 0.2 * w0
     if room(lo) <= 0.0:
