@@ -150,6 +150,28 @@ def _space_shift(blank, setups, member, side) -> float:
     return base + toward * pitch * (math.floor(-gap / pitch) + 1.0)
 
 
+def _profile_rows(flank, R, h_top):
+    """Points and outward normals (n, k, 3) of ``flank`` at the face stations R (n,) mm: ``_B_FILLET_ROWS`` rows on
+    the fillet (tip line to junction) and ``_B_PROFILE_ROWS`` - 1 rows on the blade above it, evenly in the blade
+    parameter u, the blade rows reaching at least ``h_top`` (n,) mm above the pitch line. Every row is solved at fixed
+    u and R from the row below (``Locator.fillet_rows``: the equation of meshing itself, regular across the fold of
+    the generation chart; the blade chart of ``ToothFlank.grid`` can miss points just above the junction)."""
+    gen, ol, loc = flank.generator, flank.outline, flank._locator
+    cp = gen.cp
+    mp = flank.mean_point()
+    xj = loc.junction(R, (mp.theta + np.pi - gen.mp["q"] + mp.psi_c, mp.psi_c))
+    xj[:, 0] = cp["u_j"]
+    pj = gen.evaluate_at(xj[:, 0], xj[:, 1], xj[:, 2], curvature=False).points
+    _, hj = ol.Rh(pj[:, 2], np.hypot(pj[:, 0], pj[:, 1]))
+    du = 1.2 * max(float(np.max(h_top - hj)), 0.1) / math.cos(flank.cutter.blade_angle)
+    uf = np.linspace(cp["u_min"], cp["u_j"], _B_FILLET_ROWS)
+    ub = cp["u_j"] + du * np.linspace(0.0, 1.0, _B_PROFILE_ROWS)[1:]
+    x = np.concatenate([loc.fillet_rows(R, uf[-2::-1], xj)[:, ::-1], xj[:, None],
+                        loc.fillet_rows(R, ub, xj)], 1)
+    fp = gen.evaluate_at(x[..., 0], x[..., 1], x[..., 2], curvature=False)
+    return fp.points, fp.normals
+
+
 def intrusion_field(blank, setups, member, side, point_width: float | None = None,
                     n_face: int = SLOT_STATIONS, n_fillet: int = SLOT_FILLET_ROWS):
     """Intrusion (mm, module docstring) of the opposite blade of the cutter of flank (``member``, ``side``) at each
@@ -182,10 +204,9 @@ def intrusion_field(blank, setups, member, side, point_width: float | None = Non
     fa = generate_flank(opp, A.settings, blank, member, other)
     ol = fa.outline
     pa = fa.grid(n_face, 2, n_fillet=n_fillet, curvature=False).points[:, :n_fillet]
-    gb = B.flank.grid(n_face, _B_PROFILE_ROWS, n_fillet=_B_FILLET_ROWS, curvature=False)
-    keep = np.r_[0:_B_FILLET_ROWS - 1, _B_FILLET_ROWS:_B_FILLET_ROWS + _B_PROFILE_ROWS]   # the junction row once
-    pb, nb = gb.points[:, keep], gb.normals[:, keep]
     Ra, ha, fa_az, ra = _cyl(ol, pa)
+    R = np.linspace(ol.Ri, ol.Re, n_face)
+    pb, nb = _profile_rows(B.flank, R, ha.max(1) + 0.05 * (ol.ham + ol.hfm))
     _, hb, fb_az, _ = _cyl(ol, pb)
     # the opposite flank's outward normal points into the space: its tooth lies toward -sign(n . e_azimuth)
     c_az = np.sum(nb[..., :2] * np.stack([-np.sin(fb_az), np.cos(fb_az)], -1), -1)
