@@ -2,7 +2,6 @@
 on the opposite flank, a spread-blade cut whose answer is a closed form, a cutter made too wide on purpose; and the
 fillet junction height against a brute-force scan of the equation of meshing."""
 
-import dataclasses
 import math
 import sys
 from pathlib import Path
@@ -69,9 +68,10 @@ def test_interpolation_matches_exact_solve_on_opposite_flank(basic, m, s):
 @pytest.mark.parametrize("m,s", [(Member.PINION, Side.CONVEX), (Member.GEAR, Side.CONCAVE)])
 def test_spread_blade_cut_gives_the_closed_form(basic, m, s):
     """Cut the opposite flank with the opposite blade of the same cutter at the same settings (a spread-blade cut):
-    the check's surface is then that flank itself, turned only by the tooth assembly, so the intrusion is
-    r |n . e_phi| times the difference between the cut space angle (the mean points' azimuth gap, as generated) and the assembled one, which
-    ``tooth_rotation`` makes 2 pi / z - s_mn / (cos beta_m r_m). 1e-3 mm: the interpolation (test above)."""
+    the check's surface is then that flank itself, turned only by the tooth assembly, so the intrusion is r |n .
+    e_phi| times the difference between the cut space angle (the mean points' azimuth gap, as generated) and the
+    assembled one, which ``tooth_rotation`` makes 2 pi / z - s_mn / (cos beta_m r_m). 1e-3 mm: the interpolation (test
+    above)."""
     spec, blank, setups = basic
     A, B = setups[(m, s)], setups[(m, _other(s))]
     cut = sc.opposite_blade(A.cutter, B.cutter)
@@ -120,7 +120,8 @@ def test_too_wide_cutter_is_flagged_with_its_key(basic):
 
 def test_fit_cures_the_derived_cutters_without_changing_a_flank(basic):
     """The derived point width (the slot width at the root in the mean section) intrudes toward the toe and heel,
-    where the separately generated sides narrow the slot; the refit makes every side fit and leaves every working flank as it was (the generation kernel does not see W)."""
+    where the separately generated sides narrow the slot; the refit makes every side fit and leaves every working
+    flank as it was (the generation kernel does not see W)."""
     spec, blank, setups = basic
     st = dict(setups)
     fitted = sc.fit_point_widths(spec, blank, st)
@@ -191,11 +192,12 @@ def test_junction_height_matches_brute_force_scan(basic, m, s):
 
 def _swept_penetration(blank, setups, m, s, n_psi=801):
     """Brute force, without the equation of meshing or the envelope: the largest depth (mm) by which points of the
-    opposite flank (its grid at the check's worst face station, placed as the neighbouring teeth of the assembled tooth)
-    lie inside the cutter's opposite blade at some instant of the generating roll of flank (m, s), up to the height of
-    that blade's generated fillet junction. Each point is carried into the cutter frame at every cradle angle (inverse of the member map); its
-    distance to the blade's meridian (tip flat, edge radius, blade), signed by a point-in-region test, is the 3-D
-    distance to the cutter surface of revolution; a coarse scan of the cradle angle is refined around its maximum."""
+    opposite flank (its grid at the check's worst face station, placed as the neighbouring teeth of the assembled
+    tooth) lie inside the cutter's opposite blade at some instant of the generating roll of flank (m, s), up to the
+    height of that blade's generated fillet junction. Each point is carried into the cutter frame at every cradle
+    angle (inverse of the member map); its distance to the blade's meridian (tip flat, edge radius, blade), signed by
+    a point-in-region test, is the 3-D distance to the cutter surface of revolution; a coarse scan of the cradle angle
+    is refined around its maximum."""
     from matplotlib.path import Path as MPath
 
     from spiralbevel._core import generation as _g
@@ -260,13 +262,14 @@ def _swept_penetration(blank, setups, m, s, n_psi=801):
 
 
 def test_intrusion_matches_brute_force_sweep(basic):
-    """The check's largest intrusion against the brute-force sweep above, on the 12/41 design as derived (0.19 mm at
-    the toe and heel). 0.02 mm: the two measure the overlap of the same two surfaces from either side (the sweep:
-    opposite-flank points' depth in the cutter; the check: the envelope's points' distance along the flank normal),
-    equal to first order in the overlap (measured 0.009 mm apart here; a point width 1 mm too wide, overlap ~1 mm,
-    puts them 0.23 mm apart, so that case is only flagged, test above), and the sweep's points lie ~0.05 mm apart."""
+    """The check's largest intrusion against the brute-force sweep above, on the four flanks of the 12/41 design as
+    derived (0.17-0.19 mm at the toe and heel). 0.02 mm: the two measure the overlap of the same two surfaces from
+    either side (the sweep: opposite-flank points' depth in the cutter; the check: the envelope's points' distance
+    along the flank normal), equal to first order in the overlap (measured at most 0.010 mm apart here; a point width
+    1 mm too wide, overlap ~1 mm, puts them 0.23 mm apart, so that case is only flagged, test above), and the sweep's
+    points lie ~0.05 mm apart."""
     spec, blank, setups = basic
-    for k in [(Member.PINION, Side.CONVEX)]:
+    for k in ALL:
         check = sc.slot_fit(blank, setups, *k).intrusion
         brute = _swept_penetration(blank, setups, *k)
         assert check > 0.1 and abs(check - brute) < 0.02

@@ -8,18 +8,19 @@ The two flanks of a tooth space are generated separately when their settings dif
 side here), so nothing ties that opposite blade to the opposite flank: if it reaches past it, cutting the first flank
 removes material of the finished second one (the tooth comes out thinner than designed, its fillet undercut).
 
-The check generates that opposite blade's surface (blade angle and edge radius of the opposite flank's own cutter,
-the edge radius no larger than the point width holds) with the settings of the cut flank and measures, at
+The check generates that opposite blade's surface (blade angle and edge radius of the opposite flank's own cutter, the
+edge radius no larger than the point width holds) with the settings of the cut flank and measures, at
 ``SLOT_STATIONS`` face stations from toe to heel and on ``SLOT_FILLET_ROWS`` rows from its generated root (the tip
 line) to its fillet/blade junction, how far it lies inside the material of the opposite flank, which is placed as in
 the assembled tooth (:func:`~spiralbevel.gearset.facemilled.tooth_rotation`, the neighbouring tooth's flank that
-bounds the same space). The measure is the distance along the opposite flank's normal, positive into its tooth: the arc, on the circle about
-the member axis through the point, from the opposite flank to the point, times the azimuthal component |n . e_phi| of
-that flank's unit normal there (first order in the distance; the arc alone, the measure of the CAD root-slot width
-:func:`~spiralbevel.geometry.solid.root_slot_width`, is ill-conditioned on the fillet's bottom, where the flank runs
-nearly along the circle). Both surfaces are compared at equal cone distance R and equal height h, the opposite
-flank's azimuth and normal interpolated along its generated profile (fillet and blade rows). Below the opposite flank's generated root the opposite blade only cuts the
-slot's bottom (whose depth the root-cone check judges), not the flank.
+bounds the same space). The measure is the distance along the opposite flank's normal, positive into its tooth: the
+arc, on the circle about the member axis through the point, from the opposite flank to the point, times the azimuthal
+component |n . e_phi| of that flank's unit normal there (first order in the distance; the arc alone, the measure of
+the CAD root-slot width :func:`~spiralbevel.geometry.solid.root_slot_width`, is ill-conditioned on the fillet's
+bottom, where the flank runs nearly along the circle). Both surfaces are compared at equal cone distance R and equal
+height h, the opposite flank's azimuth and normal interpolated along its generated profile (fillet and blade rows).
+Below the opposite flank's generated root the opposite blade only cuts the slot's bottom (whose depth the root-cone
+check judges), not the flank.
 
 The generated flank itself does not depend on W (the kernel sees only the cutting blade), so a derived point width
 that intrudes is refitted without changing any flank: the largest W at which the opposite blade intrudes nowhere by
@@ -65,7 +66,8 @@ class SlotFit:
         The flank whose cutter is checked.
     intrusion : float, mm
         Largest distance, along the opposite flank's normal, by which the opposite blade's surface lies inside the
-        opposite flank's tooth (negative: the smallest clearance; -inf: the opposite blade stays below the opposite flank's root).
+        opposite flank's tooth (negative: the smallest clearance; -inf: the opposite blade stays below the opposite
+        flank's root).
     face_position : float, -
         Where: (R - R_i) / (R_e - R_i), 0 at the toe, 1 at the heel.
     height : float, mm
@@ -87,9 +89,9 @@ class SlotFit:
         return self.intrusion <= SLOT_TOL_MM
 
     def to_dict(self) -> dict:
-        return {"intrusion_mm": self.intrusion if math.isfinite(self.intrusion) else None, "face_position": self.face_position, "height_above_root_mm":
-                self.height, "point_width_mm": self.point_width, "opposite_edge_radius_mm": self.edge_radius,
-                "fits": self.fits}
+        return {"intrusion_mm": self.intrusion if math.isfinite(self.intrusion) else None,
+                "face_position": self.face_position, "height_above_root_mm": self.height,
+                "point_width_mm": self.point_width, "opposite_edge_radius_mm": self.edge_radius, "fits": self.fits}
 
 
 def _other(side: Side) -> Side:
