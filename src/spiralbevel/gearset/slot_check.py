@@ -301,10 +301,13 @@ def slot_messages(spec, blank, setups, checks) -> dict:
             w = _largest_fitting_width(blank, setups, m, s, res.point_width)
         except (GeometryError, DesignError):
             w = None
+        synthesized = [x.value for x in (s, _other(s)) if "synthesis" in setups[(m, x)].source]
+        keys = ("synthesis.path_direction / synthesis.semi_major_axis (the [synthesis] section) of the synthesized "
+                f"{' and '.join(synthesized)} side" if synthesized else
+                f"face_milling.{m.value}_{s.value}.machine or face_milling.{m.value}_{_other(s).value}.machine")
         todo = (f"reduce {key} to {w:.3f} mm or less" if w is not None else
-                f"no point width fits: the settings of face_milling.{m.value}_{s.value} and "
-                f"face_milling.{m.value}_{_other(s).value} leave no tooth space there (change either machine, or the "
-                f"tooth thickness)")
+                f"no point width fits: the two flanks' settings leave no tooth space there (the flanks cross); "
+                f"change {keys}, or the tooth thickness")
         out[(m, s)] = [f"the cutter does not fit the tooth space: its opposite blade (point width "
                        f"{res.point_width:.3f} mm) cuts {res.intrusion:.3f} mm into the {_other(s).value} flank "
                        f"({where}); {todo}"]
