@@ -31,6 +31,7 @@ from spiralbevel.job import facemilled as fm
 from spiralbevel.job.facemilled import DEFAULT_SYNTHESIS
 from spiralbevel.job.blank import blank_from_design
 from spiralbevel.job.tca import run_pair_tca
+from spiralbevel.gearset.slot_check import slot_checks
 
 TEMPLATE = """
 title = "sample"
@@ -72,9 +73,10 @@ def sample(rng):
 def develop(text, beta):
     """(None, checks) when the design is developed, else (the failure message, None). ``checks``: the largest
     deviation (deg) of the four flanks' mean-point pressure and spiral angles from the design (20 deg, ``beta``),
-    whether the TCA shows an edge contact (bearing off a flank) at some position, and the TE level of each side
+    whether the TCA shows an edge contact (bearing off a flank) at some position, the TE level of each side
     (arcsec): the level the default synthesis used (``synthesis.<side>.te_magnitude_arcsec``; lower than the design's
-    when it fell back, ``DEFAULT_TE_FALLBACK``) and the level the TCA shows (:func:`te_level`)."""
+    when it fell back, ``DEFAULT_TE_FALLBACK``) and the level the TCA shows (:func:`te_level`), whether every cutter
+    fits its tooth space (``gearset.slot_check``) and whether a derived point width had to be refitted for that."""
     spec = parse_design(text)
     blank = blank_from_design(spec)
     setups, synth = fm.setup_flanks(spec, blank, with_synthesis=True)
@@ -93,7 +95,10 @@ def develop(text, beta):
     edge = any(section[n]["edge_contact_positions_deg"] for n in ("drive", "coast"))
     z1 = spec.gear_set.pinion_teeth
     levels = {n: (synth[n].summary()["te_magnitude_arcsec"], te_level(section[n], z1)) for n in ("drive", "coast")}
-    return None, (dev, edge, levels)
+    slot = slot_checks(blank, setups)
+    slot_ok = all(not isinstance(r, Exception) and r.fits for r in slot.values())
+    refit = any("fitted to the tooth space" in st.source for st in setups.values())
+    return None, (dev, edge, levels, slot_ok, refit)
 
 
 def te_level(sec, z1):
@@ -114,8 +119,8 @@ TE_LEVEL_TOL = 0.10
 
 def failed_checks(checks):
     """The checks a developed pair misses: angles (0.05 deg), bearing (edge contact), TE level (design level used,
-    TCA level within 10 %)."""
-    dev, edge, levels = checks
+    TCA level within 10 %), every cutter fits its tooth space."""
+    dev, edge, levels, slot_ok, _ = checks
     out = []
     if dev > 0.05:
         out.append(f"mean-point angles {dev:.3f} deg off")
@@ -126,13 +131,15 @@ def failed_checks(checks):
             out.append(f"{name} TE level reduced to {used:g} arcsec")
         elif not abs(seen - DESIGN_TE_ARCSEC) <= TE_LEVEL_TOL * DESIGN_TE_ARCSEC:
             out.append(f"{name} TCA TE level {seen:.2f} arcsec")
+    if not slot_ok:
+        out.append("a cutter does not fit its tooth space")
     return out
 
 
 def main(n=40, seed=1, part=0, parts=1):
     rng = np.random.default_rng(seed)
     ok, reasons, crashes = 0, collections.Counter(), []
-    n_angles = n_inside = n_level = n_all = 0
+    n_angles = n_inside = n_level = n_slot = n_refit = n_refit_ok = n_all = 0
     t0, c0 = time.perf_counter(), time.process_time()
     n_run = 0
     for i in range(n):
@@ -154,6 +161,8 @@ def main(n=40, seed=1, part=0, parts=1):
         extra = "" if checks is None else (f", angles within {checks[0]:.3f} deg of the design"
                                            f"{', edge contact' if checks[1] else ', bearing inside the flanks'}"
                                            ", TE level " + "/".join(f"{u:g}->{v:.2f}" for u, v in checks[2].values())
+                                           + (", cutters fit" if checks[3] else ", a CUTTER DOES NOT FIT the slot")
+                                           + (" (point width refitted)" if checks[4] else "")
                                            + (f"; MISSES: {', '.join(missed)}" if missed else "; every check met"))
         print(f"  {'developed' if why is None else 'NOT developed'} ({time.perf_counter() - t1:.1f} s): {label}{extra}",
               flush=True)
@@ -163,6 +172,9 @@ def main(n=40, seed=1, part=0, parts=1):
             n_inside += not checks[1]
             n_level += not any("TE level" in m for m in missed)
             n_all += not missed
+            n_slot += checks[3]
+            n_refit += checks[4]
+            n_refit_ok += checks[4] and checks[3]
         else:
             reasons[why.split(":")[0] + ": " + why.split(":", 1)[-1][:110]] += 1
             print(f"  not developed: {label}: {why[:200]}")
@@ -173,8 +185,9 @@ def main(n=40, seed=1, part=0, parts=1):
     print(f"  of these: mean-point angles of all four flanks within 0.05 deg of the design: {n_angles}; bearing "
           f"inside both flanks (no edge contact in the 21-position TCA of either side): {n_inside}; TE level of both "
           f"sides at the design's {DESIGN_TE_ARCSEC:g} arcsec (synthesized at it, TCA within "
-          f"{100 * TE_LEVEL_TOL:.0f} %): {n_level}")
-    print(f"meeting every check (developed, angles, bearing inside, TE level): {n_all} of {n} "
+          f"{100 * TE_LEVEL_TOL:.0f} %): {n_level}; every cutter fits its tooth space: {n_slot} (a derived point "
+          f"width refitted in {n_refit}, of which {n_refit_ok} then fit)")
+    print(f"meeting every check (developed, angles, bearing inside, TE level, slot): {n_all} of {n} "
           f"({100.0 * n_all / n:.0f} %)")
     for why, k in reasons.most_common():
         print(f"  {k:3d} x {why}")

@@ -72,6 +72,9 @@ def setup_flanks(spec, blank, with_synthesis: bool = False):
     if sy is not None:
         new, synth = synthesize_sides(spec, blank, out, sy)
         out.update(new)
+    from .slot_check import fit_point_widths
+
+    fit_point_widths(spec, blank, out, synth)    # derived point widths that the tooth space does not hold
     return (out, synth) if with_synthesis else out
 
 

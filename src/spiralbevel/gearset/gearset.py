@@ -204,6 +204,10 @@ class GearSet:
 
         self._require("face-milled", "machine_summary() (log-spiral flanks are not cut by a face-milling cutter)")
         flanks, machines = flank_report(self.setups, self.blank)
+        if not self.is_hypoid:
+            from .slot_check import slot_report
+
+            slot_report(self.design, self.blank, self.setups, flanks)   # each cutter's opposite blade (as the job)
         return MachineSummary(flanks, machines)
 
     def tca(self, side: str = "drive", misalignment=None, positions: int | None = None):

@@ -23,6 +23,9 @@ def run_facemilled(gs, out, steps, report, summary):
     with steps.step("generated flanks and curvatures"):
         grids = gs.grids(n_face, n_profile)
         flanks, machines = fm.flank_report(setups, blank)
+        from .slot_check import slot_report
+
+        slot_report(spec, blank, setups, flanks)      # each cutter's opposite blade against the opposite flank
         report["flanks"] = flanks
         report["machine_settings"] = machines
     with steps.step("tooth assembly"):

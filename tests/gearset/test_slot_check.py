@@ -1,0 +1,275 @@
+"""The cutter-in-the-slot check (gearset/slot_check.py) against independent computations: an exact per-point solve
+on the opposite flank, a spread-blade cut whose answer is a closed form, a cutter made too wide on purpose; and the
+fillet junction height against a brute-force scan of the equation of meshing."""
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from spiralbevel.conventions import Member, Side
+from spiralbevel.gearset import facemilled as fm
+from spiralbevel.gearset import slot_check as sc
+from spiralbevel.generation.flank import generate_flank
+from spiralbevel.io.design_file import parse_design
+from spiralbevel.job.blank import blank_from_design
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from _design_12x41 import design_12x41  # noqa: E402
+
+ALL = [(m, s) for m in fm.MEMBERS for s in fm.SIDES]
+
+
+@pytest.fixture(scope="module")
+def basic():
+    """The 12/41 design's derived cutters and solved basic settings (no synthesis, no refit)."""
+    spec = parse_design(design_12x41())
+    blank = blank_from_design(spec)
+    return spec, blank, fm._basic_setups(spec, blank)
+
+
+def _other(s):
+    return Side.CONCAVE if s is Side.CONVEX else Side.CONVEX
+
+
+@pytest.mark.parametrize("m,s", ALL)
+def test_interpolation_matches_exact_solve_on_opposite_flank(basic, m, s):
+    """Each intrusion of the grid check against the opposite flank's own point on the same circle (axial position,
+    radius) about the member axis, located by Newton's method (``ToothFlank.locate``), placed in the space by the
+    assembled tooth: same distance (arc times |n . e_phi|). 2e-3 mm: the check interpolates the opposite flank's
+    azimuth and normal linearly along 13 fillet rows and 15 blade rows (7 blade rows gave 2.7e-3 mm next to the
+    junction, where the profile's curvature jumps)."""
+    spec, blank, setups = basic
+    val, R, h, opp = sc.intrusion_field(blank, setups, m, s)
+    A, B = setups[(m, s)], setups[(m, _other(s))]
+    fa = generate_flank(opp, A.settings, blank, m, _other(s))
+    pa = fa.grid(sc.SLOT_STATIONS, 2, n_fillet=sc.SLOT_FILLET_ROWS, curvature=False).points[:, :sc.SLOT_FILLET_ROWS]
+    ok = np.isfinite(val)
+    ok[:, 0] = False        # the tip line itself: on the opposite flank's root edge, where locate may leave the flank
+    assert ok.sum() > 0.7 * ok.size
+    P = pa[ok]
+    r = np.hypot(P[:, 0], P[:, 1])
+    fb = B.flank.locate(P[:, 2], r, curvature=False)
+    shift = sc._space_shift(blank, setups, m, s)
+    az_b = np.arctan2(fb.points[:, 1], fb.points[:, 0]) + shift
+    az_a = np.arctan2(P[:, 1], P[:, 0])
+    t = np.stack([-np.sin(az_b), np.cos(az_b)], -1)
+    n_rot = np.stack([np.cos(shift) * fb.normals[:, 0] - np.sin(shift) * fb.normals[:, 1],
+                      np.sin(shift) * fb.normals[:, 0] + np.cos(shift) * fb.normals[:, 1]], -1)
+    into = -np.sign(np.sum(n_rot * t, -1))
+    exact = into * (np.remainder(az_a - az_b + math.pi, 2 * math.pi) - math.pi) * r * np.abs(np.sum(n_rot * t, -1))
+    on = fb.u >= B.cutter.fillet_range[0] - 1e-9      # Newton may land on the cutter's extension past its tip
+    assert on.mean() > 0.7
+    assert np.max(np.abs(exact - val[ok])[on]) < 2e-3
+
+
+@pytest.mark.parametrize("m,s", [(Member.PINION, Side.CONVEX), (Member.GEAR, Side.CONCAVE)])
+def test_spread_blade_cut_gives_the_closed_form(basic, m, s):
+    """Cut the opposite flank with the opposite blade of the same cutter at the same settings (a spread-blade cut):
+    the check's surface is then that flank itself, turned only by the tooth assembly, so the intrusion is r |n .
+    e_phi| times the difference between the cut space angle (the mean points' azimuth gap, as generated) and the
+    assembled one, which ``tooth_rotation`` makes 2 pi / z - s_mn / (cos beta_m r_m). 1e-3 mm: the interpolation (test
+    above)."""
+    spec, blank, setups = basic
+    A, B = setups[(m, s)], setups[(m, _other(s))]
+    cut = sc.opposite_blade(A.cutter, B.cutter)
+    flank = generate_flank(cut, A.settings, blank, m, _other(s))
+    st = dict(setups)
+    st[(m, _other(s))] = fm.FlankSetup(m, _other(s), cut, A.settings, flank, "spread blade")
+    val, R, h, _ = sc.intrusion_field(blank, st, m, s)
+    ma, mb = A.flank.mean_point(), flank.mean_point()
+    r_m = math.hypot(ma.point[0], ma.point[1])
+    az_a, az_b = math.atan2(ma.point[1], ma.point[0]), math.atan2(mb.point[1], mb.point[0])
+    toward = 1.0 if ma.normal @ np.array([-math.sin(az_a), math.cos(az_a), 0.0]) > 0 else -1.0
+    gap_cut = np.remainder(toward * (az_b - az_a), 2 * math.pi)
+    i, z = m.index, (blank.z1 if m is Member.PINION else blank.z2)
+    gap_assembled = 2 * math.pi / z - getattr(blank, f"smn{i}") / math.cos(getattr(blank, f"beta_m{i}")) / r_m
+    fa = generate_flank(sc.opposite_blade(A.cutter, B.cutter), A.settings, blank, m, _other(s))
+    g = fa.grid(sc.SLOT_STATIONS, 2, n_fillet=sc.SLOT_FILLET_ROWS, curvature=False)
+    pa, na = g.points[:, :sc.SLOT_FILLET_ROWS], g.normals[:, :sc.SLOT_FILLET_ROWS]
+    r = np.hypot(pa[..., 0], pa[..., 1])
+    c = np.abs(-na[..., 0] * pa[..., 1] / r + na[..., 1] * pa[..., 0] / r)      # |n . e_phi|
+    ok = np.isfinite(val)
+    assert ok.mean() > 0.85      # the tip row lies on the flank's own root: at or just below it
+    assert np.max(np.abs(val[ok] - (gap_cut - gap_assembled) * r[ok] * c[ok])) < 1e-3
+
+
+def test_too_wide_cutter_is_flagged_with_its_key(basic):
+    """A point width 1.5 mm wider than the derived one (the slot width at the root) cannot fit: every side is
+    flagged by more than the width added less the derived width's own toe/heel intrusion, and the warning names
+    ``face_milling.point_width`` and a smaller value that fits."""
+    spec, blank, setups = basic
+    w0 = setups[(Member.GEAR, Side.CONVEX)].cutter.point_width
+    wide = parse_design(design_12x41() + f"\n[face_milling]\npoint_width = {w0 + 1.5:.4f}\n")
+    st = fm._basic_setups(wide, blank)
+    checks = sc.slot_checks(blank, st)
+    before = sc.slot_checks(blank, setups)
+    for k, res in checks.items():
+        assert not res.fits
+        # the opposite blade moves 1.5 mm along the cutter radius: its surface at least 1.5 cos(alpha) (~1.4 mm)
+        # in the normal direction, more as an arc about the member axis
+        assert res.intrusion > before[k].intrusion + 1.0
+    msgs = sc.slot_messages(wide, blank, st, checks)
+    for text in (t for v in msgs.values() for t in v):
+        assert "face_milling.point_width" in text and "reduce" in text
+        w = float(text.split(" to ")[-1].split(" mm")[0])
+        assert w < w0 + 1.5
+
+
+def test_fit_cures_the_derived_cutters_without_changing_a_flank(basic):
+    """The derived point width (the slot width at the root in the mean section) intrudes toward the toe and heel,
+    where the separately generated sides narrow the slot; the refit makes every side fit and leaves every working
+    flank as it was (the generation kernel does not see W)."""
+    spec, blank, setups = basic
+    st = dict(setups)
+    fitted = sc.fit_point_widths(spec, blank, st)
+    assert fitted            # the derived widths of this design do intrude (measured 0.21-0.26 mm at toe/heel)
+    for k in ALL:
+        res = sc.slot_fit(blank, st, *k)
+        assert res.fits and res.intrusion <= sc.SLOT_FIT_MM + 1e-3     # brentq's xtol on W, 1e-3 mm
+        mp0, mp1 = setups[k].flank.mean_point(), st[k].flank.mean_point()
+        np.testing.assert_allclose(mp1.point, mp0.point, atol=1e-9)
+    for k, (w0, w) in fitted.items():
+        assert w < w0 and st[k].cutter.point_width == w
+
+
+def _junction_brute_force(flank, R):
+    """Height above the root cone of the generated junction line (blade parameter u_j) at cone distances R, by a
+    scan: for 4001 cradle angles, the cutter angles of the junction circle where the equation of meshing (seed 001
+    Eq. (13), ``meshing_residual``) changes sign, found on a 181-point scan and refined by bisection, the one nearest
+    the reference angle taken; the generated points' (R, h) interpolated at R."""
+    gen, ol = flank.generator, flank.outline
+    uj = gen.cp["u_j"]
+    mp = flank.mean_point()
+    psi = mp.psi_c + np.linspace(-0.6, 0.6, 4001)
+    ref = gen.reference_angle(psi)
+    phi = ref[:, None] + np.linspace(-1.5, 1.5, 181)[None, :]
+
+    def f(ph):
+        return gen.meshing_residual(uj, ph - (np.pi - gen.mp["q"] + psi[:, None]), psi[:, None])
+
+    v = f(phi)
+    change = np.sign(v[:, 1:]) != np.sign(v[:, :-1])
+    dist = np.where(change, np.abs(phi[:, :-1] - ref[:, None]), np.inf)
+    k = np.argmin(dist, 1)
+    good = np.isfinite(dist[np.arange(len(psi)), k])
+    lo, hi = phi[np.arange(len(psi)), k][:, None], phi[np.arange(len(psi)), k + 1][:, None]
+    flo = f(lo)
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        fm_ = f(mid)
+        left = np.sign(fm_) == np.sign(flo)
+        lo, flo, hi = np.where(left, mid, lo), np.where(left, fm_, flo), np.where(left, hi, mid)
+    ph = 0.5 * (lo + hi)[:, 0]
+    p = gen.evaluate_at(np.full(psi.shape, uj), ph, psi, curvature=False).points[good]
+    Rx, hx = ol.Rh(p[:, 2], np.hypot(p[:, 0], p[:, 1]))
+    order = np.argsort(Rx)
+    return np.interp(R, Rx[order], hx[order]) - ol.h_root(R)
+
+
+@pytest.mark.parametrize("m,s", ALL)
+def test_junction_height_matches_brute_force_scan(basic, m, s):
+    """The fillet/blade junction height (``pinion_fillet.junction_height``: Newton on the junction line in the
+    (phi, psi_c) chart, used by the fillet refit and the clearance checks) against the scan above; and the first-order
+    estimate rho (1 - sin alpha) of the junction above the tip line, which the derived edge radius assumes.
+    5e-4 mm: linear interpolation between scan points 3e-4 rad apart in psi_c."""
+    from spiralbevel.gearset.pinion_fillet import junction_height
+
+    spec, blank, setups = basic
+    flank = setups[(m, s)].flank
+    ol = flank.outline
+    R = np.linspace(ol.Ri, ol.Re, 7)
+    hj = junction_height(flank, 7)
+    np.testing.assert_allclose(hj, _junction_brute_force(flank, R), atol=5e-4)
+    c = flank.cutter
+    est = c.edge_radius * (1 - math.sin(c.blade_angle))
+    # the generated junction sits above the cutter's own rho (1 - sin alpha) by the roll's curvature of the profile
+    # (measured 4-30 %): only the order of magnitude is a check here
+    assert np.all((hj > 0.5 * est) & (hj < 2.0 * est))
+
+
+def _swept_penetration(blank, setups, m, s, n_psi=801):
+    """Brute force, without the equation of meshing or the envelope: the largest depth (mm) by which points of the
+    opposite flank (its grid at the check's worst face station, placed as the neighbouring teeth of the assembled
+    tooth) lie inside the cutter's opposite blade at some instant of the generating roll of flank (m, s), up to the
+    height of that blade's generated fillet junction. Each point is carried into the cutter frame at every cradle
+    angle (inverse of the member map); its distance to the blade's meridian (tip flat, edge radius, blade), signed by
+    a point-in-region test, is the 3-D distance to the cutter surface of revolution; a coarse scan of the cradle angle
+    is refined around its maximum."""
+    from matplotlib.path import Path as MPath
+
+    from spiralbevel._core import generation as _g
+    from spiralbevel.conventions import Hand
+    from spiralbevel.generation.meshing import Generator
+
+    A, B = setups[(m, s)], setups[(m, _other(s))]
+    opp = sc.opposite_blade(A.cutter, B.cutter)
+    gen = Generator(opp, A.settings, B.flank.hand)
+    cp, mp = gen.cp, gen.mp
+    ol = B.flank.outline
+    # the opposite blade's meridian (rho, z): tip flat (W/2 of it), edge radius, blade to 1.6 depths
+    u = np.concatenate([np.linspace(cp["u_min"], cp["u_j"], 60),      # chords of 1/60 of the edge radius's arc
+                        cp["u_j"] + np.linspace(0.0, 1.6 * (ol.ham + ol.hfm) / math.cos(opp.blade_angle), 4)[1:]])
+    rho, z, _, _ = _g.profile(u, cp)
+    s_b, W = cp["s"], opp.point_width
+    line = np.concatenate([[[rho[0] - s_b * 0.5 * W, 0.0]], np.stack([rho, z], -1)])
+    region = MPath(np.concatenate([line, [[rho[-1] - s_b * 0.5 * W, z[-1]]]]))
+    # opposite flank points up to the junction height of the check's surface, every neighbouring tooth
+    val, R, h, _ = sc.intrusion_field(blank, setups, m, s)
+    i = int(np.argmax(np.max(val, 1)))                  # the face station of the largest intrusion
+    g = B.flank.grid(sc.SLOT_STATIONS, 15, n_fillet=17, curvature=False)
+    P = g.points[i]
+    Rb, hb = ol.Rh(P[..., 2], np.hypot(P[..., 0], P[..., 1]))
+    P = P[(hb - ol.h_root(Rb)) <= h[i, -1] + 1e-9]
+    from spiralbevel.gearset.facemilled import tooth_rotation
+
+    rot = tooth_rotation(blank, setups, m)
+    z_m = blank.z1 if m is Member.PINION else blank.z2
+    base = rot if s is Side.CONVEX else -rot
+    copies = []
+    for k in range(-1, 2):
+        a = base + 2 * math.pi * k / z_m
+        copies.append(P @ np.array([[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]]).T)
+    P = np.concatenate(copies)
+    if B.flank.hand is Hand.RIGHT:
+        P = P * np.array([1.0, -1.0, 1.0])          # the kernel's canonical (left-hand) member frame
+
+    def depth(psi, P=P):        # (n_points, len(psi))
+        psi = np.atleast_1d(psi)
+        zero = np.zeros((len(psi), 3))
+        t = _g.to_member(zero, psi, mp)
+        M = np.stack([_g.to_member(zero + e, psi, mp) - t for e in np.eye(3)], -1)      # columns
+        r = np.einsum("pij,npj->npi", np.linalg.inv(M), P[:, None, :] - t[None])
+        b0 = np.pi - mp["q"] + psi
+        C = mp["S"] * np.stack([np.cos(b0), np.sin(b0)], -1)
+        q = np.stack([np.hypot(r[..., 0] - C[:, 0], r[..., 1] - C[:, 1]), r[..., 2]], -1).reshape(-1, 2)
+        a, b = line[:-1], line[1:]
+        ab = b - a
+        tt = np.clip(np.einsum("qsk,sk->qs", q[:, None] - a[None], ab) / np.sum(ab * ab, -1), 0.0, 1.0)
+        d = np.min(np.linalg.norm(q[:, None] - (a[None] + tt[..., None] * ab[None]), axis=-1), 1)
+        inside = region.contains_points(q)
+        return np.where(inside, d, -d).reshape(len(P), len(psi))
+
+    mpA = A.flank.mean_point()
+    coarse = mpA.psi_c + np.linspace(-0.8, 0.8, n_psi)
+    D = np.concatenate([depth(c) for c in np.array_split(coarse, 12)], 1)
+    best = coarse[np.argmax(D, 1)]
+    step = coarse[1] - coarse[0]
+    fine = [depth(b + np.linspace(-1, 1, 21) * step, P[j:j + 1]).max() for j, b in enumerate(best)]
+    return float(max(fine))
+
+
+def test_intrusion_matches_brute_force_sweep(basic):
+    """The check's largest intrusion against the brute-force sweep above, on the four flanks of the 12/41 design as
+    derived (0.17-0.19 mm at the toe and heel). 0.02 mm: the two measure the overlap of the same two surfaces from
+    either side (the sweep: opposite-flank points' depth in the cutter; the check: the envelope's points' distance
+    along the flank normal), equal to first order in the overlap (measured at most 0.010 mm apart here; a point width
+    1 mm too wide, overlap ~1 mm, puts them 0.23 mm apart, so that case is only flagged, test above), and the sweep's
+    points lie ~0.05 mm apart."""
+    spec, blank, setups = basic
+    for k in ALL:
+        check = sc.slot_fit(blank, setups, *k).intrusion
+        brute = _swept_penetration(blank, setups, *k)
+        assert check > 0.1 and abs(check - brute) < 0.02
