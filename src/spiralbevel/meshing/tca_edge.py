@@ -99,6 +99,9 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     x_edge = np.full((n, P, 5), np.nan)
     te_edge = np.full((n, P), np.nan)
     label = {}
+    # a solution at (i, j) counts only above floor[i, j]: -inf, but in the march (2.) the TE of the pair's own surface
+    # contact of the real flanks where it has one
+    floor = np.full((n, P), -np.inf)
     if not all(names):
         return x_edge, te_edge, label
 
@@ -154,6 +157,8 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         new = np.zeros(len(ii), bool)
         for a in np.flatnonzero(ok):
             i, j = int(ii[a]), int(jj[a])
+            if te[a] <= floor[i, j]:  # trails the pair's own surface contact of the real flanks
+                continue
             if not np.isfinite(te_edge[i, j]) or te[a] > te_edge[i, j]:
                 te_edge[i, j], x_edge[i, j] = te[a], xs[a]
                 c = cons(a)
@@ -259,8 +264,12 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         try_solve(np.array([q[0] for q in keys]), np.array([q[1] for q in keys]), np.array([q[2] for q in keys]),
                   np.array([q[3] for q in keys]), np.array([seeds[q] for q in keys]))
 
-    # 2. march to neighbouring positions without a contact of the real flanks (the surface contact of the pair is
-    # lost there altogether), from the neighbour's edge solution
+    # 2. march over the cycle from every edge contact that leads, to its neighbours in the effective pinion rotation
+    # (the next position of the same pair; at the ends of the cycle, the same and the next rotation of the adjacent
+    # pair), from the neighbour's edge solution: where the pair's surface contact is lost altogether, and where the
+    # pair still touches on the real flanks but a boundary of the same teeth may touch first (e.g. the gear's fillet
+    # junction against the pinion flank ahead of a real surface contact: the edge then counts only if it leads that
+    # contact, ``floor``)
     def leads(i, j):
         """Pair j's edge contact at position i leads the surface contacts of the other pairs there."""
         return te_edge[i, j] >= best_other[i, j]
@@ -271,17 +280,31 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         c = constraints(np.array([m]), np.array([e]))[0]
         return [(m, e)] + ([b for b in c if names[b[0]][b[1]] != "generated"] if len(c) == 2 else [])
 
+    # step of every (position i, pair k) in the effective rotation phi1 + k T1: i + (n - 1) k when the positions
+    # span one pitch T1 evenly (the last position of pair k is then the first of pair k + 1), else neighbours within
+    # a pair only
+    span = n > 1 and bool(np.allclose(np.diff(phi1), T1 / (n - 1), rtol=1e-9, atol=0.0))
+    at_step = {}
+    for i in range(n):
+        for j in range(P):
+            at_step.setdefault((i + (n - 1) * int(pairs[j]), 0) if span else (i, j), []).append((i, j))
+
+    def neighbours(i, j):
+        """(position, pair index) of the same and the adjacent effective rotations of (i, j), but (i, j) itself."""
+        g, h = (i + (n - 1) * int(pairs[j]), 0) if span else (i, j)
+        return [kj for d in (-1, 0, 1) for kj in at_step.get((g + d, h), ()) if kj != (i, j)]
+
+    floor[:] = np.where(phys, te_surface + te_tie, -np.inf)
     front = {key for key in label if leads(*key)}
     while front:
         cand = {}
         for (i, j) in front:
             _, _, m, e = label[(i, j)]
-            for d in (-1, 1):
-                k = i + d
-                if 0 <= k < n and not phys[k, j] and (k, j) not in label and (k, j) not in cand:
+            for (k, jk) in neighbours(i, j):
+                if (k, jk) not in label and (k, jk) not in cand:
                     x0 = x_edge[i, j].copy()
-                    x0[4] -= prob.ratio * (phi1[k] - phi1[i])
-                    cand[(k, j)] = (systems(m, e), x0)
+                    x0[4] -= prob.ratio * (phi1[k] - phi1[i] + (pairs[jk] - pairs[j]) * T1)
+                    cand[(k, jk)] = (systems(m, e), x0)
         if not cand:
             break
         keys = [(k, me) for k in cand for me in cand[k][0]]
