@@ -18,6 +18,8 @@ margin gradients of :func:`spiralbevel._core.tca_edge.margins`.
 
 from __future__ import annotations
 
+import numpy as np
+
 from .jit import kernel
 from .tca_newton import assemble
 
@@ -45,7 +47,7 @@ def corner_assemble(S1, S2, g1, dg1, col1, g2, dg2, col2, c1, s1, x, d, M2, F, J
         Assembly constants (:mod:`spiralbevel._core.tca_newton`).
     F, J : (5,), (5, 5) float
         Output.
-    work : (13, 6) float
+    work : (13, 6) float, C-contiguous
         Scratch: rows 0-2 the fixed-frame pinion data, rows 3-8 the gear data and its a2-cross.
 
     Returns
@@ -55,9 +57,11 @@ def corner_assemble(S1, S2, g1, dg1, col1, g2, dg2, col2, c1, s1, x, d, M2, F, J
     """
     S1f = work[0:3]
     Q = work[3:9]
-    E0 = work[9:11, 0:3]
+    # E = 0 (rows 3-4 unused): a C-contiguous (2, 3) block and an int64 aj, the types of the other callers, so
+    # that assemble is compiled once
+    E0 = work[9].reshape((2, 3))
     E0[:, :] = 0.0
-    assemble(S1, S2, c1, s1, x, d, M2, 1.0, E0, -1, 0.0, F, J, S1f, Q)  # rows 0-2: the point coincidence
+    assemble(S1, S2, c1, s1, x, d, M2, 1.0, E0, np.int64(-1), 0.0, F, J, S1f, Q)  # rows 0-2: the point coincidence
     F[3] = g1
     F[4] = g2
     for j in range(5):

@@ -176,7 +176,7 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J, work):
         Step of the forward difference of tau.
     F, J : (5,), (5, 5) float
         Output.
-    work : (13, 6) float
+    work : (13, 6) float, C-contiguous
         Scratch (no allocation per call): fixed-frame pinion data, gear data and its a2-cross, vectors.
 
     Returns
@@ -188,10 +188,12 @@ def edge_assemble(SA, gA, dgA, SB, member, c1, s1, x, d, M2, h, F, J, work):
     S2 = SB if member == 0 else SA[0]
     S1f = work[0:3]
     Q = work[3:9]
-    E0 = work[9:11, 0:3]
+    # E = 0 (rows 3-4 unused): a C-contiguous (2, 3) block and an int64 aj, the types of the other callers, so
+    # that assemble is compiled once
+    E0 = work[9].reshape((2, 3))
     E0[:, :] = 0.0
     aval = 0.0
-    assemble(S1, S2, c1, s1, x, d, M2, 1.0, E0, -1, aval, F, J, S1f, Q)  # rows 0-2: the point coincidence
+    assemble(S1, S2, c1, s1, x, d, M2, 1.0, E0, np.int64(-1), aval, F, J, S1f, Q)  # rows 0-2: the point coincidence
     c2, s2 = math.cos(x[4]), math.sin(x[4])
     ia = 0 if member == 0 else 2  # columns of q_A
     ib = 2 if member == 0 else 0  # columns of q_B

@@ -82,10 +82,14 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     generated surface), started from the extended solution projected onto that boundary. A solution counts if the
     edge point lies on the rest of its own flank's boundary segment (every other margin >= 0), the touched point on
     the other member's real flank, the flank normals of the two members are opposed and the TE is within half a gear
-    pitch. Then a march over positions: a pair without a valid contact next to a position where its edge contact
-    leads the surface contacts of the other pairs is solved from that neighbour (the same edge; from a corner also
-    its two boundaries as edges), until no new one is found (edge contacts that lead nowhere do not decide the
-    contact and are not followed). Corners are seeded by solutions that run past another boundary (an edge's touched
+    pitch. Then a march over the effective pinion rotation (positions of a pair, continued at the ends of the cycle
+    by the adjacent pair's, which repeat the same rotations one pitch apart): a pair next to a position where its
+    edge contact leads the surface contacts of the other pairs is solved from that neighbour (the same edge; from a
+    corner also its two boundaries as edges), where it has no valid contact, and also where it has a surface contact
+    of the real flanks, which the edge must then lead (a boundary of the same teeth touching first, e.g. the gear's
+    fillet junction against the pinion flank; not on a boundary that the pair's extended contact crossed at the
+    position marched from), until no new one is found (edge contacts that lead nowhere do not decide the contact and
+    are not followed). Corners are seeded by solutions that run past another boundary (an edge's touched
     point beyond the mate's boundary, where it could still lead: the corner's TE is bounded by the edge's; a
     corner's point past the end of its own boundary: that flank's vertex) and labelled ("pinion/gear",
     "heel/top corner") or, for a vertex, ("pinion", "heel/fillet corner").
@@ -99,6 +103,9 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     x_edge = np.full((n, P, 5), np.nan)
     te_edge = np.full((n, P), np.nan)
     label = {}
+    # a solution at (i, j) counts only above floor[i, j]: -inf, but in the march (2.) the TE of the pair's own surface
+    # contact of the real flanks where it has one
+    floor = np.full((n, P), -np.inf)
     if not all(names):
         return x_edge, te_edge, label
 
@@ -154,6 +161,8 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         new = np.zeros(len(ii), bool)
         for a in np.flatnonzero(ok):
             i, j = int(ii[a]), int(jj[a])
+            if te[a] <= floor[i, j]:  # trails the pair's own surface contact of the real flanks
+                continue
             if not np.isfinite(te_edge[i, j]) or te[a] > te_edge[i, j]:
                 te_edge[i, j], x_edge[i, j] = te[a], xs[a]
                 c = cons(a)
@@ -259,29 +268,71 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         try_solve(np.array([q[0] for q in keys]), np.array([q[1] for q in keys]), np.array([q[2] for q in keys]),
                   np.array([q[3] for q in keys]), np.array([seeds[q] for q in keys]))
 
-    # 2. march to neighbouring positions without a contact of the real flanks (the surface contact of the pair is
-    # lost there altogether), from the neighbour's edge solution
+    # 2. march over the cycle from every edge contact that leads, to its neighbours in the effective pinion rotation
+    # (the next position of the same pair; at the ends of the cycle, the same and the next rotation of the adjacent
+    # pair), from the neighbour's edge solution: where the pair's surface contact is lost altogether, and where the
+    # pair still touches on the real flanks but a boundary of the same teeth may touch first (e.g. the gear's fillet
+    # junction against the pinion flank ahead of a real surface contact: the edge then counts only if it leads that
+    # contact, ``floor``). Into a real surface contact not on a boundary that the pair's contact of the extended
+    # surfaces crossed at the edge contact marched from: started from that edge, near the crossing, the edge solve
+    # finds the point of the boundary next to the surface contact just inside it, which trails that contact
     def leads(i, j):
         """Pair j's edge contact at position i leads the surface contacts of the other pairs there."""
         return te_edge[i, j] >= best_other[i, j]
 
+    held_by = {}
+
+    def held(m, e):
+        """The boundaries (member, index) system (m, e) holds its points on (memoized)."""
+        if (m, e) not in held_by:
+            held_by[(m, e)] = constraints(np.array([m]), np.array([e]))[0]
+        return held_by[(m, e)]
+
     def systems(m, e):
         """The systems tried at a neighbour of a contact on boundary e of member m: that one, and from a corner its
         two boundaries as edges too (past the corner one of the boundary curves runs against the mate's flank)."""
-        c = constraints(np.array([m]), np.array([e]))[0]
+        c = held(m, e)
         return [(m, e)] + ([b for b in c if names[b[0]][b[1]] != "generated"] if len(c) == 2 else [])
 
+    def crossed_at(i, j):
+        """The boundaries (member, index) beyond which pair j's contact of the extended surfaces lies at position
+        i (none where it is a real contact)."""
+        if phys[i, j]:
+            return set()
+        return {(m, int(e)) for m in (0, 1)
+                for e in np.flatnonzero(~(margins_of(prob, m, x[i, j, 2 * m:2 * m + 2][None])[0] >= 0))}
+
+    # neighbours in the effective rotation phi1 + k T1: position i of pair k is step i + (n - 1) k when the positions
+    # span one pitch T1 evenly (the last position of pair k is then the first of pair k + 1), else within a pair only
+    span = n > 1 and bool(np.allclose(np.diff(phi1), T1 / (n - 1), rtol=1e-9, atol=0.0))
+    pl = [int(k) for k in pairs]
+
+    def neighbours(i, j):
+        """(position, pair index) of the same and the adjacent effective rotations of (i, j), but (i, j) itself."""
+        out = [(k, j) for k in (i - 1, i + 1) if 0 <= k < n]
+        if span and not 1 < i < n - 2:   # near an end of the cycle: positions of the other pairs too
+            g = i + (n - 1) * pl[j]
+            out += [(k, jk) for d in (-1, 0, 1) for jk in range(P) if jk != j
+                    for k in (g + d - (n - 1) * pl[jk],) if 0 <= k < n]
+        return out
+
+    floor[:] = np.where(phys, te_surface + te_tie, -np.inf)
     front = {key for key in label if leads(*key)}
     while front:
         cand = {}
         for (i, j) in front:
             _, _, m, e = label[(i, j)]
-            for d in (-1, 1):
-                k = i + d
-                if 0 <= k < n and not phys[k, j] and (k, j) not in label and (k, j) not in cand:
-                    x0 = x_edge[i, j].copy()
-                    x0[4] -= prob.ratio * (phi1[k] - phi1[i])
-                    cand[(k, j)] = (systems(m, e), x0)
+            sy_, cr = systems(m, e), None
+            for (k, jk) in neighbours(i, j):
+                if (k, jk) not in label and (k, jk) not in cand:
+                    sk = sy_
+                    if phys[k, jk]:
+                        cr = crossed_at(i, j) if cr is None else cr
+                        sk = [b for b in sy_ if not cr.intersection(held(*b))]
+                    if sk:
+                        x0 = x_edge[i, j].copy()
+                        x0[4] -= prob.ratio * (phi1[k] - phi1[i] + (pairs[jk] - pairs[j]) * T1)
+                        cand[(k, jk)] = (sk, x0)
         if not cand:
             break
         keys = [(k, me) for k in cand for me in cand[k][0]]
