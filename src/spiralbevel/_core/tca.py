@@ -64,8 +64,11 @@ def tangent_basis(n):
 
 
 def _flat(a, shape, tail):
-    """``a`` broadcast to ``shape + tail`` as a contiguous float64 array of rows ``(-1,) + tail``."""
-    return np.ascontiguousarray(np.broadcast_to(np.asarray(a, float), shape + tail)).reshape((-1,) + tail)
+    """``a`` broadcast to ``shape + tail`` as a contiguous, writable float64 array of rows ``(-1,) + tail``.
+
+    Writable: a read-only array (``broadcast_to`` returns one) is another numba type and would compile every kernel it
+    reaches a second time."""
+    return np.require(np.broadcast_to(np.asarray(a, float), shape + tail), float, "CW").reshape((-1,) + tail)
 
 
 def _pose(phi1, phi2, axes):
