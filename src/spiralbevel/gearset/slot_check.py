@@ -175,7 +175,7 @@ def _profile_rows(flank, R, h_top):
 
 
 def intrusion_field(blank, setups, member, side, point_width: float | None = None,
-                    n_face: int = SLOT_STATIONS, n_fillet: int = SLOT_FILLET_ROWS):
+                    n_face: int = SLOT_STATIONS, n_fillet: int = SLOT_FILLET_ROWS, cache: dict | None = None):
     """Intrusion (mm, module docstring) of the opposite blade of the cutter of flank (``member``, ``side``) at each
     point of its fillet grid, with the cone distance R and height above the root cone of each point; -inf where the
     point lies below the opposite flank's generated root (there the cut flank's cutter makes the slot's bottom).
@@ -190,6 +190,11 @@ def intrusion_field(blank, setups, member, side, point_width: float | None = Non
     point_width : float, mm, optional
         Default: the cutter's.
     n_face, n_fillet : int
+    cache : dict, optional
+        Reuse of the opposite flank's profile rows over calls for point widths no larger than the first call's (a
+        search over the point width): the rows do not depend on it, and reaching up to the first opposite blade's
+        junction they cover every narrower one's (its edge radius, and with it its junction, can only be smaller).
+        Filled by the first call.
 
     Returns
     -------
@@ -208,7 +213,12 @@ def intrusion_field(blank, setups, member, side, point_width: float | None = Non
     pa = fa.grid(n_face, 2, n_fillet=n_fillet, curvature=False).points[:, :n_fillet]
     Ra, ha, fa_az, ra = _cyl(ol, pa)
     R = np.linspace(ol.Ri, ol.Re, n_face)
-    pb, nb = _profile_rows(B.flank, R, ha.max(1) + 0.05 * (ol.ham + ol.hfm))
+    if cache is not None and "rows" in cache:
+        pb, nb = cache["rows"]
+    else:
+        pb, nb = _profile_rows(B.flank, R, ha.max(1) + 0.05 * (ol.ham + ol.hfm))
+        if cache is not None:
+            cache["rows"] = (pb, nb)
     _, hb, fb_az, _ = _cyl(ol, pb)
     # the opposite flank's outward normal points into the space: its tooth lies toward -sign(n . e_azimuth)
     c_az = np.sum(nb[..., :2] * np.stack([-np.sin(fb_az), np.cos(fb_az)], -1), -1)
@@ -224,7 +234,7 @@ def intrusion_field(blank, setups, member, side, point_width: float | None = Non
     return out, Ra, ha - ol.h_root(Ra), opp
 
 
-def slot_fit(blank, setups, member, side, point_width: float | None = None) -> SlotFit:
+def slot_fit(blank, setups, member, side, point_width: float | None = None, cache: dict | None = None) -> SlotFit:
     """Largest intrusion of the opposite blade of the cutter of flank (``member``, ``side``) (module docstring).
 
     Parameters
@@ -234,12 +244,14 @@ def slot_fit(blank, setups, member, side, point_width: float | None = None) -> S
     member : Member
     side : Side
     point_width : float, mm, optional
+    cache : dict, optional
+        As :func:`intrusion_field`'s.
 
     Returns
     -------
     SlotFit
     """
-    val, R, h, opp = intrusion_field(blank, setups, member, side, point_width)
+    val, R, h, opp = intrusion_field(blank, setups, member, side, point_width, cache=cache)
     k = np.unravel_index(int(np.argmax(val)), val.shape)
     ol = setups[(Member(member), Side(side))].flank.outline
     return SlotFit(Member(member), Side(side), float(val[k]), float((R[k] - ol.Ri) / (ol.Re - ol.Ri)), float(h[k]),
@@ -279,8 +291,10 @@ def _largest_fitting_width(blank, setups, member, side, w0: float) -> float | No
     by halves of the remaining range."""
     from scipy.optimize import brentq
 
+    rows: dict = {}     # the opposite flank's rows, solved once (every w tried is at most w0)
+
     def room(w):
-        return SLOT_FIT_MM - slot_fit(blank, setups, member, side, w).intrusion
+        return SLOT_FIT_MM - slot_fit(blank, setups, member, side, w, cache=rows).intrusion
 
     r0 = room(w0)
     if r0 >= 0.0:
