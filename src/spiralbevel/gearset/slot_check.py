@@ -55,8 +55,8 @@ SLOT_TOL_MM = 0.005
 #: opposite flank's root edge tangentially, so no clearance can be asked for there)
 SLOT_FIT_MM = 0.5 * SLOT_TOL_MM
 #: passes of the point-width refit over the four flanks: a refit that regenerates a fillet can make the other side's
-#: opposite flank intrude again (seen on 9/19 and 20/39 designs of bench/bench_robustness.py, seed 2); two passes
-#: settled every case seen, a third is a margin
+#: opposite flank intrude again (5 of 100 designs of bench/bench_robustness.py, seed 2, e.g. 9/19 and 20/39; all 5 fit
+#: after the passes); the loop ends early once a pass regenerates no fillet
 _FIT_PASSES = 3
 
 
