@@ -266,7 +266,7 @@ def slot_checks(blank, setups) -> dict:
     """{(member, side): SlotFit, or the GeometryError that kept it from being computed} over the four flanks."""
     from .facemilled import MEMBERS, SIDES
 
-    out = {}
+    out: dict[tuple[Member, Side], SlotFit | Exception] = {}
     for m in MEMBERS:
         for s in SIDES:
             if (m, s) not in setups or (m, _other(s)) not in setups:
@@ -397,10 +397,10 @@ def fit_point_widths(spec, blank, setups, synthesis=None) -> dict:
     from .facemilled import MEMBERS, PAIR_SIDES, SIDES, FlankSetup
 
     fm = spec.face_milling
-    fitted = {}
+    fitted: dict = {}
     if fm.point_width is not None:
         return fitted                                    # the user's point width: the check names the key
-    derived = {}                                         # (member, side): (derived cutter, source before the refit)
+    derived: dict = {}                                   # (member, side): (derived cutter, source before the refit)
     # a refit that shrinks the edge radius generates its flank's fillet again, and that flank is the opposite flank
     # of the other side's check (done before it in the pass): passes until no flank changes (``_FIT_PASSES``)
     for _ in range(_FIT_PASSES):
