@@ -26,6 +26,8 @@ __all__ = ["ContactProblem"]
 #: rank threshold of the minimum-norm step and trial halvings of the Newton (:mod:`spiralbevel._core.tca_newton`)
 _RCOND = 1e-10
 _HALVINGS = 8
+#: the aligned assembly (a frozen dataclass, shared: building one validates its fields)
+_ALIGNED = Misalignment()
 
 
 def _jet(surface):
@@ -74,7 +76,7 @@ class ContactProblem:
             raise DesignError(problems)
         self.pinion, self.gear = pinion, gear
         self.z1, self.z2, self.shaft_angle = int(kinematics.z1), int(kinematics.z2), float(s)  # type: ignore[arg-type]
-        self.misalignment = misalignment if misalignment is not None else Misalignment()
+        self.misalignment = misalignment if misalignment is not None else _ALIGNED
         # crossed axes (HypoidPairKinematics): the pair's own placement with the misalignments on top
         place = getattr(kinematics, "axes", None)
         self.axes = place(self.misalignment) if callable(place) else self.misalignment.axes(self.shaft_angle)
