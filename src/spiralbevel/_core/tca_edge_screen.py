@@ -12,13 +12,15 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .jit import kernel
 
-__all__ = ["screen"]
+__all__ = ["screen", "accept"]
 
 
 @kernel
-def screen(G0, G1, member, edge, k1, K, conv, ndot, te, te_lim, tolm, corner, ma, ea, mb, eb, inside, own, good):
+def screen(G0, G1, member, edge, k1, K, conv, ndot, te, te_lim, tolm, C0, C1, corner, ma, ea, mb, eb, good, ok):
     """Screen of ``m`` solved edge/corner systems (module docstring), outputs written in place.
 
     Parameters
@@ -39,17 +41,18 @@ def screen(G0, G1, member, edge, k1, K, conv, ndot, te, te_lim, tolm, corner, ma
         |TE| below which a solution belongs to a tooth pair of the mesh (half a gear pitch).
     tolm : float
         Margin below which a point not held on a boundary counts as beyond it.
+    C0, C1 : (m,) bool
+        The pinion / gear point lies on the real flank (the surface's ``contains``; read only for a member whose
+        point the system holds on no boundary, and only where converged).
     corner : (m,) bool
         Output: corner system.
     ma, ea, mb, eb : (m,) int
         Output: member and boundary index of the corner's boundaries a and b (0 where not a corner).
-    inside : (m, 2) bool
-        Output: the point of member 0 / 1 lies on the rest of its boundaries (every margin >= -tolm, but those of the
-        boundaries the system holds it on; NaN fails).
-    own : (m, 2) bool
-        Output: the system holds the point of member 0 / 1 on a boundary (else it must lie on the real flank).
     good : (m,) bool
         Output: converged, opposed normals (n1 . n2 < -0.5) and |TE| < te_lim.
+    ok : (m,) bool
+        Output: good, and each point on its member's flank: on the rest of the boundaries it is held on (every other
+        margin >= -tolm; NaN fails), on the real flank (``C0``, ``C1``) where it is held on none.
     """
     m = member.shape[0]
     for i in range(m):
@@ -64,13 +67,45 @@ def screen(G0, G1, member, edge, k1, K, conv, ndot, te, te_lim, tolm, corner, ma
         # the boundaries held: an edge's one, a corner's two (member, index)
         h0m, h0e = (ma[i], ea[i]) if c else (member[i], edge[i])
         h1m, h1e = (mb[i], eb[i]) if c else (-1, -1)
-        for mm in range(2):
-            G = G0 if mm == 0 else G1
-            ok = True
-            for e in range(G.shape[1]):
-                held = (h0m == mm and h0e == e) or (h1m == mm and h1e == e)
-                if not held and not G[i, e] >= -tolm:
-                    ok = False
-            inside[i, mm] = ok
-            own[i, mm] = h0m == mm or h1m == mm
         good[i] = conv[i] and ndot[i] < -0.5 and math.fabs(te[i]) < te_lim
+        inside = bool(conv[i])
+        for mm in range(2):
+            if h0m == mm or h1m == mm:
+                G = G0 if mm == 0 else G1
+                for e in range(G.shape[1]):
+                    held = (h0m == mm and h0e == e) or (h1m == mm and h1e == e)
+                    if not held and not G[i, e] >= -tolm:
+                        inside = False
+            elif not (C0[i] if mm == 0 else C1[i]):
+                inside = False
+        ok[i] = inside and good[i]
+
+
+@kernel
+def accept(ok, te, ii, jj, xs, floor, te_edge, x_edge, new, win):
+    """Keep the screened solutions (``ok (m,)``) that lead their pair's best contact so far, in row order.
+
+    Row a (position ``ii[a]``, pair index ``jj[a]``, TE ``te[a]``, solution ``xs[a] (5,)``) replaces the pair's
+    edge contact ``te_edge[i, j]``, ``x_edge[i, j] (5,)`` (in place) when its TE exceeds ``floor[i, j]`` and the pair
+    has none (NaN) or a smaller TE; ``new[a]`` marks such rows, ``win[a]`` the last of them at each pair (whose
+    boundaries label the contact).
+    """
+    n, P = te_edge.shape
+    last = np.full((n, P), -1, np.int64)
+    for a in range(ok.shape[0]):
+        new[a] = False
+        win[a] = False
+        if not ok[a]:
+            continue
+        i, j = ii[a], jj[a]
+        if te[a] <= floor[i, j]:  # trails the pair's own surface contact of the real flanks
+            continue
+        if not math.isfinite(te_edge[i, j]) or te[a] > te_edge[i, j]:
+            te_edge[i, j] = te[a]
+            for k in range(5):
+                x_edge[i, j, k] = xs[a, k]
+            new[a] = True
+            last[i, j] = a
+    for a in range(ok.shape[0]):
+        if new[a] and last[ii[a], jj[a]] == a:
+            win[a] = True

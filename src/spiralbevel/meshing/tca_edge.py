@@ -132,15 +132,23 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         with np.errstate(invalid="ignore"):
             te = np.ascontiguousarray(te_of(xs[:, 4], ii, jj), float)
         # which boundaries each system holds its points on (a corner: two), whether each point lies on the rest of
-        # its boundaries (margins >= -1e-9 but the held ones; NaN fails), and whether the solution is a contact
-        # (converged, opposed normals, |TE| below half a gear pitch): compiled (spiralbevel._core.tca_edge_screen)
+        # its boundaries (margins >= -1e-9 but the held ones; NaN fails) or, held on none, on the real flank, and
+        # whether the solution is a contact (converged, opposed normals, |TE| below half a gear pitch); then the
+        # solutions that lead their pair's best contact so far: compiled (spiralbevel._core.tca_edge_screen)
         k = len(ii)
-        corner, good = np.empty(k, bool), np.empty(k, bool)
+        conv = np.ascontiguousarray(conv, bool)
+        C = [np.zeros(k, bool), np.zeros(k, bool)]
+        ic = np.flatnonzero(conv)
+        if ic.size:
+            for m in (0, 1):
+                C[m][ic] = surface_contains(surfs[m], xs[ic, 2 * m:2 * m + 2])
+        corner, good, ok, new, win = (np.empty(k, bool) for _ in range(5))
         ma, ea, mb, eb = (np.empty(k, np.int64) for _ in range(4))
-        inside, own = np.empty((k, 2), bool), np.empty((k, 2), bool)
-        _ks.screen(gg[0], gg[1], np.ascontiguousarray(mem, np.int64), np.ascontiguousarray(ee, np.int64), k1, K,
-                   np.ascontiguousarray(conv, bool), np.ascontiguousarray(ndot, float), te, np.pi / prob.z2, 1e-9,
-                   corner, ma, ea, mb, eb, inside, own, good)
+        mem, ee = np.ascontiguousarray(mem, np.int64), np.ascontiguousarray(ee, np.int64)
+        _ks.screen(gg[0], gg[1], mem, ee, k1, K, conv, np.ascontiguousarray(ndot, float), te, np.pi / prob.z2, 1e-9,
+                   C[0], C[1], corner, ma, ea, mb, eb, good, ok)
+        _ks.accept(ok, te, np.ascontiguousarray(ii, np.int64), np.ascontiguousarray(jj, np.int64),
+                   np.ascontiguousarray(xs, float), floor, te_edge, x_edge, new, win)
 
         def cons(a):
             """The boundaries (member, index) system a holds its points on."""
@@ -148,30 +156,15 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
                 return (int(ma[a]), int(ea[a])), (int(mb[a]), int(eb[a]))
             return ((int(mem[a]), int(ee[a])),)
 
-        ok = conv.copy()
-        for m in (0, 1):
-            # a member with no point held on a boundary: the point lies on its real flank
-            free = np.flatnonzero(~own[:, m] & ok)
-            if free.size:
-                inside[free, m] = surface_contains(surfs[m], xs[free, 2 * m:2 * m + 2])
-            ok &= inside[:, m]
-        ok &= good
-        new = np.zeros(len(ii), bool)
-        for a in np.flatnonzero(ok):
+        for a in np.flatnonzero(win):  # the label of each pair's new contact
             i, j = int(ii[a]), int(jj[a])
-            if te[a] <= floor[i, j]:  # trails the pair's own surface contact of the real flanks
-                continue
-            if not np.isfinite(te_edge[i, j]) or te[a] > te_edge[i, j]:
-                te_edge[i, j], x_edge[i, j] = te[a], xs[a]
-                c = cons(a)
-                if len(c) == 2:
-                    ms = {m for m, _ in c}
-                    who = "pinion/gear" if len(ms) == 2 else ("pinion", "gear")[c[0][0]]
-                    label[(i, j)] = (who, f"{names[c[0][0]][c[0][1]]}/{names[c[1][0]][c[1][1]]} corner", 0,
-                                     int(ee[a]))
-                else:
-                    label[(i, j)] = (("pinion", "gear")[mem[a]], names[mem[a]][ee[a]], int(mem[a]), int(ee[a]))
-                new[a] = True
+            c = cons(a)
+            if len(c) == 2:
+                ms = {m for m, _ in c}
+                who = "pinion/gear" if len(ms) == 2 else ("pinion", "gear")[c[0][0]]
+                label[(i, j)] = (who, f"{names[c[0][0]][c[0][1]]}/{names[c[1][0]][c[1][1]]} corner", 0, int(ee[a]))
+            else:
+                label[(i, j)] = (("pinion", "gear")[mem[a]], names[mem[a]][ee[a]], int(mem[a]), int(ee[a]))
         if depth > 0:
             # a solution running past another boundary: the real teeth may first touch where its boundary meets
             # that one (two boundary curves meeting, or a flank's vertex against the mate), started from it
