@@ -10,6 +10,7 @@ phi1 + 2 pi k / z1 and phi2 - 2 pi k / z2 (exact for a rigid, perfectly indexed 
 
 from __future__ import annotations
 
+import math
 import numbers
 
 import numpy as np
@@ -82,7 +83,10 @@ class ContactProblem:
         self.axes = place(self.misalignment) if callable(place) else self.misalignment.axes(self.shaft_angle)
         if scale is None:
             ref = getattr(pinion, "reference_params", None)
-            scale = float(np.linalg.norm(pinion.evaluate(np.asarray(ref, float))[0])) if ref is not None else 100.0
+            scale = 100.0
+            if ref is not None:  # |r| (as np.linalg.norm computes it, without its checks)
+                r = np.asarray(pinion.evaluate(np.asarray(ref, float))[0], float).ravel()
+                scale = math.sqrt(r.dot(r))
         self.scale = float(scale)
         d, M2, L = _b.assembly_constants(self.axes, self.scale)
         self._const = (np.ascontiguousarray(d), np.ascontiguousarray(M2), L)

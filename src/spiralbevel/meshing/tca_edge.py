@@ -295,7 +295,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
 
     # neighbours in the effective rotation phi1 + k T1: position i of pair k is step i + (n - 1) k when the positions
     # span one pitch T1 evenly (the last position of pair k is then the first of pair k + 1), else within a pair only
-    span = n > 1 and bool(np.all(np.abs(np.diff(phi1) - T1 / (n - 1)) <= 1e-9 * (T1 / (n - 1))))  # np.allclose
+    span = n > 1 and bool(np.all(np.abs((phi1[1:] - phi1[:-1]) - T1 / (n - 1)) <= 1e-9 * (T1 / (n - 1))))  # allclose
     pl = [int(k) for k in pairs]
 
     def neighbours(i, j):
