@@ -90,10 +90,14 @@ def test_screen_and_accept_match_the_reference_loops():
         ok_ref, good_ref, split = _reference_screen(gg, mem, ee, k1, K, conv, ndot, te, te_lim, contains)
         out = [np.empty(m, bool) for _ in range(2)] + [np.empty(m, np.int64) for _ in range(4)]
         good, ok = np.empty(m, bool), np.empty(m, bool)
-        # the compiled screen reads contains only where converged (the caller evaluates it there alone)
+        # the compiled screen reads contains only where converged (the caller evaluates it there alone); its
+        # acceptance is checked below, here against pairs that accept nothing (floor +inf)
         C = [np.where(conv, c, False) for c in contains]
+        z = np.zeros(m, np.int64)
         ks.screen(np.ascontiguousarray(gg[0]), np.ascontiguousarray(gg[1]), mem.astype(np.int64),
-                  ee.astype(np.int64), k1, K, conv, ndot, te, te_lim, 1e-9, C[0], C[1], out[0], *out[2:], good, ok)
+                  ee.astype(np.int64), k1, K, conv, ndot, te, te_lim, 1e-9, C[0], C[1], z, z, np.zeros((m, 5)),
+                  np.full((1, 1), np.inf), np.full((1, 1), np.nan), np.full((1, 1, 5), np.nan),
+                  np.empty((1, 1), np.int64), out[0], *out[2:], good, ok, np.empty(m, bool), np.empty(m, bool))
         np.testing.assert_array_equal(ok, ok_ref)
         np.testing.assert_array_equal(good, good_ref)
         corner, ma, ea, mb, eb = split
@@ -111,7 +115,8 @@ def test_screen_and_accept_match_the_reference_loops():
         te_ref, x_ref = te_edge.copy(), x_edge.copy()
         new_ref, labelled = _reference_accept(ok, te, ii, jj, xs, floor, te_ref, x_ref)
         new, win = np.empty(m, bool), np.empty(m, bool)
-        ks.accept(ok, te, ii.astype(np.int64), jj.astype(np.int64), xs, floor, te_edge, x_edge, new, win)
+        ks.accept(ok, te, ii.astype(np.int64), jj.astype(np.int64), xs, floor, te_edge, x_edge,
+                  np.empty((n, P), np.int64), new, win)
         np.testing.assert_array_equal(te_edge, te_ref)
         np.testing.assert_array_equal(x_edge, x_ref)
         np.testing.assert_array_equal(new, new_ref)

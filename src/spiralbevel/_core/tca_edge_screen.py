@@ -12,15 +12,14 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from .jit import kernel
 
 __all__ = ["screen", "accept"]
 
 
 @kernel
-def screen(G0, G1, member, edge, k1, K, conv, ndot, te, te_lim, tolm, C0, C1, corner, ma, ea, mb, eb, good, ok):
+def screen(G0, G1, member, edge, k1, K, conv, ndot, te, te_lim, tolm, C0, C1, ii, jj, xs, floor, te_edge, x_edge,
+           last, corner, ma, ea, mb, eb, good, ok, new, win):
     """Screen of ``m`` solved edge/corner systems (module docstring), outputs written in place.
 
     Parameters
@@ -44,6 +43,9 @@ def screen(G0, G1, member, edge, k1, K, conv, ndot, te, te_lim, tolm, C0, C1, co
     C0, C1 : (m,) bool
         The pinion / gear point lies on the real flank (the surface's ``contains``; read only for a member whose
         point the system holds on no boundary, and only where converged).
+    ii, jj, xs, floor, te_edge, x_edge : see :func:`accept`
+    last : (n, P) int
+        Scratch of :func:`accept`.
     corner : (m,) bool
         Output: corner system.
     ma, ea, mb, eb : (m,) int
@@ -53,6 +55,8 @@ def screen(G0, G1, member, edge, k1, K, conv, ndot, te, te_lim, tolm, C0, C1, co
     ok : (m,) bool
         Output: good, and each point on its member's flank: on the rest of the boundaries it is held on (every other
         margin >= -tolm; NaN fails), on the real flank (``C0``, ``C1``) where it is held on none.
+    new, win : (m,) bool
+        Output: the rows ``ok`` that :func:`accept` keeps.
     """
     m = member.shape[0]
     for i in range(m):
@@ -79,19 +83,20 @@ def screen(G0, G1, member, edge, k1, K, conv, ndot, te, te_lim, tolm, C0, C1, co
             elif not (C0[i] if mm == 0 else C1[i]):
                 inside = False
         ok[i] = inside and good[i]
+    accept(ok, te, ii, jj, xs, floor, te_edge, x_edge, last, new, win)
 
 
 @kernel
-def accept(ok, te, ii, jj, xs, floor, te_edge, x_edge, new, win):
+def accept(ok, te, ii, jj, xs, floor, te_edge, x_edge, last, new, win):
     """Keep the screened solutions (``ok (m,)``) that lead their pair's best contact so far, in row order.
 
     Row a (position ``ii[a]``, pair index ``jj[a]``, TE ``te[a]``, solution ``xs[a] (5,)``) replaces the pair's
     edge contact ``te_edge[i, j]``, ``x_edge[i, j] (5,)`` (in place) when its TE exceeds ``floor[i, j]`` and the pair
     has none (NaN) or a smaller TE; ``new[a]`` marks such rows, ``win[a]`` the last of them at each pair (whose
-    boundaries label the contact).
+    boundaries label the contact). ``last (n, P)`` int is scratch.
     """
-    n, P = te_edge.shape
-    last = np.full((n, P), -1, np.int64)
+    for a in range(ok.shape[0]):
+        last[ii[a], jj[a]] = -1
     for a in range(ok.shape[0]):
         new[a] = False
         win[a] = False

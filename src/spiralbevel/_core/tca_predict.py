@@ -19,25 +19,6 @@ __all__ = ["predict"]
 
 
 @kernel
-def _quintic_at(on, X, Xp, o, out):
-    """Quintic Hermite polynomial through the nodes ``on (3,)`` (distinct) with values ``X (3, d)`` and slopes
-    ``Xp (3, d)``, at ``o`` into ``out (d,)``."""
-    for j in range(X.shape[1]):
-        out[j] = 0.0
-    for k in range(3):
-        lk, ck = 1.0, 0.0
-        for m in range(3):
-            if m != k:
-                lk *= (o - on[m]) / (on[k] - on[m])
-                ck += 1.0 / (on[k] - on[m])
-        dk = o - on[k]
-        a = lk * lk * (1.0 - 2.0 * ck * dk)
-        b = lk * lk * dk
-        for j in range(X.shape[1]):
-            out[j] += a * X[k, j] + b * Xp[k, j]
-
-
-@kernel
 def predict(o, nodes, X, Xp, out):
     """Predicted path ``out (m, d)`` at offsets ``o (m,)`` from sorted ``nodes (n,)`` (n >= 1) with values
     ``X (n, d)`` and slopes ``Xp (n, d)`` (module docstring)."""
@@ -45,11 +26,22 @@ def predict(o, nodes, X, Xp, out):
     d = X.shape[1]
     for i in range(o.shape[0]):
         oi = o[i]
-        if n >= 3 and oi < nodes[0]:
-            _quintic_at(nodes[0:3], X[0:3], Xp[0:3], oi, out[i])
-            continue
-        if n >= 3 and oi > nodes[n - 1]:
-            _quintic_at(nodes[n - 3:n], X[n - 3:n], Xp[n - 3:n], oi, out[i])
+        if n >= 3 and (oi < nodes[0] or oi > nodes[n - 1]):
+            # the quintic Hermite polynomial through the three nodes nearest that end (Lagrange form)
+            b = 0 if oi < nodes[0] else n - 3
+            for j in range(d):
+                out[i, j] = 0.0
+            for k in range(b, b + 3):
+                lk, ck = 1.0, 0.0
+                for m in range(b, b + 3):
+                    if m != k:
+                        lk *= (oi - nodes[m]) / (nodes[k] - nodes[m])
+                        ck += 1.0 / (nodes[k] - nodes[m])
+                dk = oi - nodes[k]
+                wx = lk * lk * (1.0 - 2.0 * ck * dk)
+                wp = lk * lk * dk
+                for j in range(d):
+                    out[i, j] += wx * X[k, j] + wp * Xp[k, j]
             continue
         if n == 1:
             for j in range(d):

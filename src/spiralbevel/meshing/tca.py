@@ -24,8 +24,10 @@ of the last Newton iterations, one continuation level (+-T/2) feeds a quintic pr
 positions beyond a node the continuation could not reach are not solved, and systems that stop converging are dropped at
 the first iteration that does not halve their residual (continuation nodes after two); the generated flanks give
 analytic derivatives (:mod:`spiralbevel._core.generation_blade_jet`). The edge contacts (:mod:`.tca_edge`: compiled
-margins and Newton, :mod:`spiralbevel._core.tca_edge`), the line-contact test and the transfer iteration
-(:mod:`spiralbevel._core.tca_transfer`) are compiled as well; what remains in Python is the orchestration below.
+margins and Newton, :mod:`spiralbevel._core.tca_edge`; the screen and acceptance of their solutions,
+:mod:`spiralbevel._core.tca_edge_screen`), the path predictor (:mod:`spiralbevel._core.tca_predict`), the line-contact
+test and the transfer iteration (:mod:`spiralbevel._core.tca_transfer`) are compiled as well; what remains in Python is
+the orchestration below.
 """
 
 from __future__ import annotations

@@ -108,6 +108,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     # a solution at (i, j) counts only above floor[i, j]: -inf, but in the march (2.) the TE of the pair's own surface
     # contact of the real flanks where it has one
     floor = np.full((n, P), -np.inf)
+    last = np.empty((n, P), np.int64)  # scratch of the compiled acceptance
     if not all(names):
         return x_edge, te_edge, label
     _, k1, K, _, _ = _setup(prob)  # boundaries of the pinion, of both members
@@ -146,9 +147,9 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         ma, ea, mb, eb = (np.empty(k, np.int64) for _ in range(4))
         mem, ee = np.ascontiguousarray(mem, np.int64), np.ascontiguousarray(ee, np.int64)
         _ks.screen(gg[0], gg[1], mem, ee, k1, K, conv, np.ascontiguousarray(ndot, float), te, np.pi / prob.z2, 1e-9,
-                   C[0], C[1], corner, ma, ea, mb, eb, good, ok)
-        _ks.accept(ok, te, np.ascontiguousarray(ii, np.int64), np.ascontiguousarray(jj, np.int64),
-                   np.ascontiguousarray(xs, float), floor, te_edge, x_edge, new, win)
+                   C[0], C[1], np.ascontiguousarray(ii, np.int64), np.ascontiguousarray(jj, np.int64),
+                   np.ascontiguousarray(xs, float), floor, te_edge, x_edge, last, corner, ma, ea, mb, eb, good, ok, new,
+                   win)
 
         def cons(a):
             """The boundaries (member, index) system a holds its points on."""
