@@ -3,10 +3,11 @@ per-position scipy.optimize.fsolve of the same contact equations, measured in th
 
 Run:  python bench/bench_tca.py [--quick]
 Targets: under 50 ms (met); 1 ms for the face-milled pair (not met). Compiled: the surface-contact Newton with the jets
-of both flank kinds, the edge-contact Newton (analytic Jacobian, compiled boundary margins), the line-contact test,
-the transfer-point iteration and the contact geometry of the ellipses (poses, Weingarten tensors, relative
-curvatures); what is left is the Python orchestration between them (continuation, edge candidates and their
-acceptance, transfer brackets, TE and statuses: numpy calls on small arrays) and the fixed cost of each compiled call.
+of both flank kinds, the edge-contact Newton (analytic Jacobian, compiled boundary margins), the screen and acceptance
+of its solutions, the path predictor, the line-contact test, the transfer-point iteration and the contact geometry of
+the ellipses (poses, Weingarten tensors, relative curvatures); what is left is the Python orchestration between them
+(continuation, edge candidates, transfer brackets, TE and statuses: numpy calls on small arrays) and the fixed cost of
+each compiled call.
 
 Cases: the crowned log-spiral pair (point contact), the exactly conjugate log-spiral pair (line contact) and the
 seed 001 face-milled pair with the locally synthesized pinion (drive side, as the job runs it: ``phased_for_pair``).

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .rotations import rot_y, rot_z
+from .rotations import rot_z
 
 __all__ = [
     "assembly_axes",
@@ -46,11 +46,12 @@ def assembly_axes(shaft_angle, d_a1=0.0, d_a2=0.0, d_offset=0.0, d_shaft=0.0):
         R_y(S + dS): gear member frame -> fixed frame at phi2 = 0.
     """
     s = shaft_angle + d_shaft
+    c, sn = float(np.cos(s)), float(np.sin(s))  # the values of rot_y(s); built from floats: called once per TCA
     a1 = np.array([0.0, 0.0, 1.0])
-    a2 = np.array([np.sin(s), 0.0, np.cos(s)])
-    o1 = d_a1 * a1 + d_offset * np.array([0.0, 1.0, 0.0])
-    o2 = d_a2 * a2
-    return a1, o1, a2, o2, rot_y(s)
+    a2 = np.array([sn, 0.0, c])
+    o1 = np.array([0.0, d_offset, d_a1])
+    o2 = np.array([d_a2 * sn, 0.0 * d_a2, d_a2 * c])
+    return a1, o1, a2, o2, np.array([[c, 0.0, sn], [0.0, 1.0, 0.0], [-sn, 0.0, c]])
 
 
 def tangent_basis(n):

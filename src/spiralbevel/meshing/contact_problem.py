@@ -10,6 +10,7 @@ phi1 + 2 pi k / z1 and phi2 - 2 pi k / z2 (exact for a rigid, perfectly indexed 
 
 from __future__ import annotations
 
+import math
 import numbers
 
 import numpy as np
@@ -26,6 +27,8 @@ __all__ = ["ContactProblem"]
 #: rank threshold of the minimum-norm step and trial halvings of the Newton (:mod:`spiralbevel._core.tca_newton`)
 _RCOND = 1e-10
 _HALVINGS = 8
+#: the aligned assembly (a frozen dataclass, shared: building one validates its fields)
+_ALIGNED = Misalignment()
 
 
 def _jet(surface):
@@ -74,13 +77,16 @@ class ContactProblem:
             raise DesignError(problems)
         self.pinion, self.gear = pinion, gear
         self.z1, self.z2, self.shaft_angle = int(kinematics.z1), int(kinematics.z2), float(s)  # type: ignore[arg-type]
-        self.misalignment = misalignment if misalignment is not None else Misalignment()
+        self.misalignment = misalignment if misalignment is not None else _ALIGNED
         # crossed axes (HypoidPairKinematics): the pair's own placement with the misalignments on top
         place = getattr(kinematics, "axes", None)
         self.axes = place(self.misalignment) if callable(place) else self.misalignment.axes(self.shaft_angle)
         if scale is None:
             ref = getattr(pinion, "reference_params", None)
-            scale = float(np.linalg.norm(pinion.evaluate(np.asarray(ref, float))[0])) if ref is not None else 100.0
+            scale = 100.0
+            if ref is not None:  # |r| (as np.linalg.norm computes it, without its checks)
+                r = np.asarray(pinion.evaluate(np.asarray(ref, float))[0], float).ravel()
+                scale = math.sqrt(r.dot(r))
         self.scale = float(scale)
         d, M2, L = _b.assembly_constants(self.axes, self.scale)
         self._const = (np.ascontiguousarray(d), np.ascontiguousarray(M2), L)

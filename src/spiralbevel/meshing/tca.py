@@ -24,8 +24,10 @@ of the last Newton iterations, one continuation level (+-T/2) feeds a quintic pr
 positions beyond a node the continuation could not reach are not solved, and systems that stop converging are dropped at
 the first iteration that does not halve their residual (continuation nodes after two); the generated flanks give
 analytic derivatives (:mod:`spiralbevel._core.generation_blade_jet`). The edge contacts (:mod:`.tca_edge`: compiled
-margins and Newton, :mod:`spiralbevel._core.tca_edge`), the line-contact test and the transfer iteration
-(:mod:`spiralbevel._core.tca_transfer`) are compiled as well; what remains in Python is the orchestration below.
+margins and Newton, :mod:`spiralbevel._core.tca_edge`; the screen and acceptance of their solutions,
+:mod:`spiralbevel._core.tca_edge_screen`), the path predictor (:mod:`spiralbevel._core.tca_predict`), the line-contact
+test and the transfer iteration (:mod:`spiralbevel._core.tca_transfer`) are compiled as well; what remains in Python is
+the orchestration below.
 """
 
 from __future__ import annotations
@@ -37,6 +39,7 @@ import numpy as np
 from .._core import tca as _k
 from .._core import tca_batch as _b
 from .._core import tca_ellipse as _e
+from .._core import tca_predict as _p
 from ..errors import DesignError, NoContactError, Problem
 from .contact_problem import ContactProblem
 from .contact_surface import surface_contains, surface_derivatives
@@ -69,48 +72,14 @@ def _validate(n_positions, pairs, approach, tol, phi1_mean):
         raise DesignError(problems)
 
 
-def _hermite(o, nodes, X, Xp):
-    """Cubic Hermite interpolation (extrapolation beyond the ends) of X(o) from sorted nodes with slopes Xp."""
-    if len(nodes) == 1:
-        return X[0] + (o - nodes[0])[..., None] * Xp[0]
-    i = np.clip(np.searchsorted(nodes, o) - 1, 0, len(nodes) - 2)
-    h = nodes[i + 1] - nodes[i]
-    t = ((o - nodes[i]) / h)[..., None]
-    h = h[..., None]
-    h00 = 2 * t**3 - 3 * t**2 + 1
-    h10 = t**3 - 2 * t**2 + t
-    h01 = -2 * t**3 + 3 * t**2
-    h11 = t**3 - t**2
-    return h00 * X[i] + h10 * h * Xp[i] + h01 * X[i + 1] + h11 * h * Xp[i + 1]
-
-
 def _predict(o, nodes, X, Xp):
-    """Predictor of the path at offsets ``o``: cubic Hermite between the nodes; beyond the outer nodes, the quintic
-    through the three nodes nearest that end (values and slopes) when there are three, else Hermite extrapolation."""
-    out = _hermite(o, nodes, X, Xp)
-    if len(nodes) >= 3:
-        for sel, k in ((o < nodes[0], slice(0, 3)), (o > nodes[-1], slice(-3, None))):
-            if np.any(sel):
-                out[sel] = _quintic(nodes[k], X[k], Xp[k], o[sel])
+    """Predictor of the path at offsets ``o (m,)`` from sorted nodes with values ``X (n, 5)`` and slopes ``Xp``: cubic
+    Hermite between the nodes; beyond the outer nodes, the quintic through the three nodes nearest that end (values and
+    slopes) when there are three, else Hermite extrapolation (compiled: :mod:`spiralbevel._core.tca_predict`)."""
+    out = np.empty((len(o), X.shape[1]))
+    _p.predict(np.ascontiguousarray(o, float), np.ascontiguousarray(nodes, float), np.ascontiguousarray(X, float),
+               np.ascontiguousarray(Xp, float), out)
     return out
-
-
-def _quintic(o_nodes, X, Xp, o):
-    """Polynomial of degree 5 through three nodes with values and slopes, evaluated (extrapolated) at ``o (k,)``."""
-    o_nodes = np.asarray(o_nodes, float)
-    on = o_nodes.tolist()
-    c = sum(on) / len(on)
-    s = (max(on) - min(on)) or 1.0
-    t = (o_nodes - c) / s
-    A = np.concatenate([t[:, None] ** _P, (_P * t[:, None] ** _PM1) / s], 0)  # (6, 6)
-    coef = np.linalg.solve(A, np.concatenate([X, Xp], 0))  # (6, 5)
-    tt = (np.asarray(o, float) - c) / s
-    return (tt[:, None] ** _P) @ coef
-
-
-#: powers of the quintic and of its derivative
-_P = np.arange(6)
-_PM1 = np.maximum(_P - 1, 0)
 
 
 def _continuation(prob, x_mean, xp0, phi1_mean, o_lo, o_hi, step, tol):
@@ -137,11 +106,11 @@ def _continuation(prob, x_mean, xp0, phi1_mean, o_lo, o_hi, step, tol):
                 guesses.append(x_mean + d * step * xp0)
             else:
                 new = [j0 + d * m for m in (1, 2) if abs(j0) + m <= need[d]]
-                known = [j0 - 2 * d, j0 - d, j0] if (j0 - 2 * d) in nodes else [j0 - d, j0]
-                if len(known) == 3:
-                    Xk = np.array([nodes[j][0] for j in known])
-                    Pk = np.array([nodes[j][1] for j in known])
-                    guesses.extend(_quintic(np.array(known) * step, Xk, Pk, np.array(new) * step))
+                known = sorted([j0 - 2 * d, j0 - d, j0] if (j0 - 2 * d) in nodes else [j0 - d, j0])
+                if len(known) == 3:  # the quintic through the three nodes of this side
+                    guesses.extend(_predict(np.array(new, float) * step, np.array(known, float) * step,
+                                            np.array([nodes[j][0] for j in known]),
+                                            np.array([nodes[j][1] for j in known])))
                 else:
                     xa, pa = nodes[j0]
                     guesses.extend(xa + (np.array(new)[:, None] - j0) * step * pa)

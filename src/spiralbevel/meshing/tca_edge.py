@@ -28,7 +28,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._core import tca_edge_screen as _ks
 from .tca_edge_solve import _all_margins, corner_index, corner_split, margins_of, solve_edge_contacts  # noqa: F401
+from .tca_edge_solve import _setup
 
 __all__ = ["solve_edge_contacts", "edge_stage", "corner_split", "corner_index"]
 
@@ -106,8 +108,10 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     # a solution at (i, j) counts only above floor[i, j]: -inf, but in the march (2.) the TE of the pair's own surface
     # contact of the real flanks where it has one
     floor = np.full((n, P), -np.inf)
+    last = np.empty((n, P), np.int64)  # scratch of the compiled acceptance
     if not all(names):
         return x_edge, te_edge, label
+    _, k1, K, _, _ = _setup(prob)  # boundaries of the pinion, of both members
 
     def constraints(mem, ee):
         """The boundaries (member, index) a system puts its points on: one for an edge, two for a corner."""
@@ -125,11 +129,27 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
             return np.zeros(0, bool)
         phi_eff = phi1[ii] + pairs[jj] * T1
         xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
-        tolm = 1e-9
-        gg = [margins_of(prob, m, xs[:, 2 * m:2 * m + 2]) for m in (0, 1)]
-        ok = conv.copy()
-        # held[a, m, e]: system a holds its point of member m on boundary e (that margin is 0 by construction)
-        corner, ma, ea, mb, eb = corner_split(prob, mem, ee)
+        gg = [np.ascontiguousarray(margins_of(prob, m, xs[:, 2 * m:2 * m + 2]), float) for m in (0, 1)]
+        with np.errstate(invalid="ignore"):
+            te = np.ascontiguousarray(te_of(xs[:, 4], ii, jj), float)
+        # which boundaries each system holds its points on (a corner: two), whether each point lies on the rest of
+        # its boundaries (margins >= -1e-9 but the held ones; NaN fails) or, held on none, on the real flank, and
+        # whether the solution is a contact (converged, opposed normals, |TE| below half a gear pitch); then the
+        # solutions that lead their pair's best contact so far: compiled (spiralbevel._core.tca_edge_screen)
+        k = len(ii)
+        conv = np.ascontiguousarray(conv, bool)
+        C = [np.zeros(k, bool), np.zeros(k, bool)]
+        ic = np.flatnonzero(conv)
+        if ic.size:
+            for m in (0, 1):
+                C[m][ic] = surface_contains(surfs[m], xs[ic, 2 * m:2 * m + 2])
+        corner, good, ok, new, win = (np.empty(k, bool) for _ in range(5))
+        ma, ea, mb, eb = (np.empty(k, np.int64) for _ in range(4))
+        mem, ee = np.ascontiguousarray(mem, np.int64), np.ascontiguousarray(ee, np.int64)
+        _ks.screen(gg[0], gg[1], mem, ee, k1, K, conv, np.ascontiguousarray(ndot, float), te, np.pi / prob.z2, 1e-9,
+                   C[0], C[1], np.ascontiguousarray(ii, np.int64), np.ascontiguousarray(jj, np.int64),
+                   np.ascontiguousarray(xs, float), floor, te_edge, x_edge, last, corner, ma, ea, mb, eb, good, ok, new,
+                   win)
 
         def cons(a):
             """The boundaries (member, index) system a holds its points on."""
@@ -137,43 +157,15 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
                 return (int(ma[a]), int(ea[a])), (int(mb[a]), int(eb[a]))
             return ((int(mem[a]), int(ee[a])),)
 
-        held = [np.zeros(g.shape, bool) for g in gg]
-        r = np.arange(len(ii))
-        for m in (0, 1):
-            s_ = ~corner & (mem == m)
-            held[m][r[s_], ee[s_]] = True
-            for mc, ec in ((ma, ea), (mb, eb)):
-                s_ = corner & (mc == m)
-                held[m][r[s_], ec[s_]] = True
-        for m in (0, 1):
-            own = held[m].any(axis=1)
-            with np.errstate(invalid="ignore"):
-                inside = np.all((gg[m] >= -tolm) | held[m], axis=1)  # on the rest of the boundary; NaN fails
-            # a member with no point held on a boundary: the point lies on its real flank
-            free = np.flatnonzero(~own & ok)
-            if free.size:
-                inside[free] = surface_contains(surfs[m], xs[free, 2 * m:2 * m + 2])
-            ok &= inside
-        with np.errstate(invalid="ignore"):
-            te = te_of(xs[:, 4], ii, jj)
-            good = conv & (ndot < -0.5) & (np.abs(te) < np.pi / prob.z2)
-        ok &= good
-        new = np.zeros(len(ii), bool)
-        for a in np.flatnonzero(ok):
+        for a in np.flatnonzero(win):  # the label of each pair's new contact
             i, j = int(ii[a]), int(jj[a])
-            if te[a] <= floor[i, j]:  # trails the pair's own surface contact of the real flanks
-                continue
-            if not np.isfinite(te_edge[i, j]) or te[a] > te_edge[i, j]:
-                te_edge[i, j], x_edge[i, j] = te[a], xs[a]
-                c = cons(a)
-                if len(c) == 2:
-                    ms = {m for m, _ in c}
-                    who = "pinion/gear" if len(ms) == 2 else ("pinion", "gear")[c[0][0]]
-                    label[(i, j)] = (who, f"{names[c[0][0]][c[0][1]]}/{names[c[1][0]][c[1][1]]} corner", 0,
-                                     int(ee[a]))
-                else:
-                    label[(i, j)] = (("pinion", "gear")[mem[a]], names[mem[a]][ee[a]], int(mem[a]), int(ee[a]))
-                new[a] = True
+            c = cons(a)
+            if len(c) == 2:
+                ms = {m for m, _ in c}
+                who = "pinion/gear" if len(ms) == 2 else ("pinion", "gear")[c[0][0]]
+                label[(i, j)] = (who, f"{names[c[0][0]][c[0][1]]}/{names[c[1][0]][c[1][1]]} corner", 0, int(ee[a]))
+            else:
+                label[(i, j)] = (("pinion", "gear")[mem[a]], names[mem[a]][ee[a]], int(mem[a]), int(ee[a]))
         if depth > 0:
             # a solution running past another boundary: the real teeth may first touch where its boundary meets
             # that one (two boundary curves meeting, or a flank's vertex against the mate), started from it
@@ -304,7 +296,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
 
     # neighbours in the effective rotation phi1 + k T1: position i of pair k is step i + (n - 1) k when the positions
     # span one pitch T1 evenly (the last position of pair k is then the first of pair k + 1), else within a pair only
-    span = n > 1 and bool(np.allclose(np.diff(phi1), T1 / (n - 1), rtol=1e-9, atol=0.0))
+    span = n > 1 and bool(np.all(np.abs((phi1[1:] - phi1[:-1]) - T1 / (n - 1)) <= 1e-9 * (T1 / (n - 1))))  # allclose
     pl = [int(k) for k in pairs]
 
     def neighbours(i, j):

@@ -25,13 +25,17 @@ def _te_at(prob, phi, pair_k, kind, x0, te_of_phi, tol):
     (member, edge) encoded as 2 * edge + member for an edge contact."""
     phi_eff = phi + 2 * np.pi * pair_k / prob.z1
     x = np.array(x0, float)
-    ok = np.zeros(len(phi), bool)
     s = kind < 0
-    if s.any():
+    n_s = int(np.count_nonzero(s))
+    if n_s == len(phi):  # surface contacts only (the common case: no edge contact at a transfer)
+        x, ok, *_ = prob.newton(phi_eff, x, tol=tol)
+    elif n_s == 0:
+        x, ok, _ = solve_edge_contacts(prob, phi_eff, x, kind % 2, kind // 2, tol=tol)
+    else:
+        ok = np.zeros(len(phi), bool)
         xs, conv, *_ = prob.newton(phi_eff[s], x[s], tol=tol)
         x[s], ok[s] = xs, conv
-    e = ~s
-    if e.any():
+        e = ~s
         xe, conv, _ = solve_edge_contacts(prob, phi_eff[e], x[e], kind[e] % 2, kind[e] // 2, tol=tol)
         x[e], ok[e] = xe, conv
     te = np.where(ok, te_of_phi(x[:, 4], pair_k, phi), np.nan)
