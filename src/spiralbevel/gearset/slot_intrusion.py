@@ -123,10 +123,9 @@ def intrusion_field(blank, setups, member, side, point_width: float | None = Non
         Default: the cutter's.
     n_face, n_fillet : int
     cache : dict, optional
-        Reuse of the opposite flank's profile rows over calls for point widths no larger than the first call's (a
-        search over the point width): the rows do not depend on it, and reaching up to the first opposite blade's
-        junction they cover every narrower one's (its edge radius, and with it its junction, can only be smaller).
-        Filled by the first call.
+        Reuse of the opposite flank's profile rows over calls for other point widths (a search over the point width):
+        the rows do not depend on it. Filled by the first call; solved again (reaching higher) when an opposite
+        blade's fillet reaches above them (a narrower point's generated fillet is not always lower).
 
     Returns
     -------
@@ -147,12 +146,15 @@ def intrusion_field(blank, setups, member, side, point_width: float | None = Non
     pa = fa.points
     Ra, ha, fa_az, ra = _cyl(ol, pa)
     R = np.linspace(ol.Ri, ol.Re, n_face)
-    if cache is not None and "rows" in cache:
-        pb, nb = cache["rows"]
-    else:
+    rows = None if cache is None else cache.get("rows")
+    if rows is not None and np.any(ha.max(1) > rows[2]):
+        rows = None                 # this opposite blade's fillet reaches above the cached rows: solved again
+    if rows is None:
         pb, nb = _profile_rows(B.flank, R, ha.max(1) + 0.05 * (ol.ham + ol.hfm))
+        rows = (pb, nb, _cyl(ol, pb)[1].max(1))
         if cache is not None:
-            cache["rows"] = (pb, nb)
+            cache["rows"] = rows
+    pb, nb, _ = rows
     _, hb, fb_az, _ = _cyl(ol, pb)
     # the opposite flank's outward normal points into the space: its tooth lies toward -sign(n . e_azimuth)
     c_az = np.sum(nb[..., :2] * np.stack([-np.sin(fb_az), np.cos(fb_az)], -1), -1)

@@ -29,7 +29,7 @@ def _largest_fitting_width(blank, setups, member, side, w0: float) -> float | No
     by halves of the remaining range."""
     from scipy.optimize import brentq
 
-    rows: dict = {}     # the opposite flank's rows, solved once (every w tried is at most w0)
+    rows: dict = {}     # the opposite flank's rows, solved once (again only where a fillet reaches above them)
 
     def room(w):
         return SLOT_FIT_MM - slot_fit(blank, setups, member, side, w, cache=rows).intrusion
