@@ -317,7 +317,8 @@ def test_steep_fillet_is_sampled_and_no_width_fits():
     climbs) 0.12 mm into that flank just above the root (the first-order measure along the flank's normal,
     arc times |n . e_phi|, is small at the fillet's bottom, where the flank runs nearly along the circle about the
     axis; both above the reported 0.005 mm). No point width down to 0.2 of the derived one fits, so the refit leaves
-    it and the check names the synthesis keys; the other three cutters fit."""
+    it and the check names the synthesis keys and the reason: the concave side's synthesized settings put its root,
+    and the opposite blade's tip with it, below the root cone; the other three cutters fit."""
     from spiralbevel.gearset.slot_blade import _edge_limit
     from spiralbevel.machine.default_cutter import EDGE_RADIUS_FILL
 
@@ -337,6 +338,14 @@ def test_steep_fillet_is_sampled_and_no_width_fits():
     assert not checks[k].fits and "fitted" not in A.source
     text = sc.slot_messages(spec, blank, st, checks)[k][0]
     assert "no point width fits" in text and "synthesis.path_direction" in text
+    # the reason named: the concave side's own root (its flank grid's tip line, a separate solve) lies below the root
+    # cone, and the opposite blade's tip, in the same tip plane, with it (1e-6 mm: both solved to the Newton tolerance)
+    ol = A.flank.outline
+    tip = A.flank.grid(5, 2, n_fillet=2, curvature=False).points[:, 0]
+    Rt, ht = ol.Rh(tip[:, 2], np.hypot(tip[:, 0], tip[:, 1]))
+    depth = float(np.min(ht - ol.h_root(Rt)))
+    assert depth < -1.0 and abs(checks[k].tip_height - depth) < 1e-6
+    assert f"{-depth:.3f} mm below the root cone" in text
     assert all(checks[x].fits for x in ALL if x != k)
 
 

@@ -44,6 +44,10 @@ from .slot_blade import SLOT_FILLET_ROWS, SLOT_STATIONS, _other, opposite_blade,
 from .slot_intrusion import SLOT_FIT_MM, SLOT_TOL_MM, SlotFit, intrusion_field, slot_fit
 from .slot_refit import _largest_fitting_width, fit_point_widths
 
+#: depth (mm) of the cut flank's root below the root cone from which a cutter that fits at no point width is said to
+#: fail for that reason (the root-cone acceptance of the design is 0.01 mm)
+_ROOT_TOL_MM = 0.01
+
 __all__ = ["SlotFit", "opposite_blade", "opposite_blade_grid", "intrusion_field", "slot_fit", "slot_checks",
            "slot_messages", "slot_report", "fit_point_widths", "SLOT_STATIONS", "SLOT_FILLET_ROWS", "SLOT_TOL_MM",
            "SLOT_FIT_MM"]
@@ -92,9 +96,15 @@ def slot_messages(spec, blank, setups, checks) -> dict:
         keys = ("synthesis.path_direction / synthesis.semi_major_axis (the [synthesis] section) of the synthesized "
                 f"{' and '.join(synthesized)} side" if synthesized else
                 f"face_milling.{m.value}_{s.value}.machine or face_milling.{m.value}_{_other(s).value}.machine")
-        todo = (f"reduce {key} to {w:.3f} mm or less" if w is not None else
-                f"no point width fits: the two flanks' settings leave no tooth space there (the flanks cross); "
-                f"change {keys}, or the tooth thickness")
+        if w is not None:
+            todo = f"reduce {key} to {w:.3f} mm or less"
+        elif res.tip_height < -_ROOT_TOL_MM:
+            todo = (f"no point width fits: the {s.value} side's settings put the cutter's tip plane, its root and "
+                    f"the opposite blade's tip {-res.tip_height:.3f} mm below the root cone, where the opposite blade "
+                    f"undercuts the {_other(s).value} flank's fillet; change {keys}")
+        else:
+            todo = (f"no point width fits: the two flanks' settings leave no tooth space there (the flanks cross); "
+                    f"change {keys}, or the tooth thickness")
         out[(m, s)] = [f"the cutter does not fit the tooth space: its opposite blade (point width "
                        f"{res.point_width:.3f} mm) cuts {res.intrusion:.3f} mm into the {_other(s).value} flank "
                        f"({where}); {todo}"]

@@ -41,6 +41,10 @@ class SlotFit:
         Where: height of that point above the blank's root cone.
     point_width, edge_radius : float, mm
         W of the cutter and the edge radius of its opposite blade.
+    tip_height : float, mm
+        Lowest height of the opposite blade's tip line above the root cone over the face width: that of the cutter's
+        tip plane, where the cut flank's own root lies (0 when the settings put that root on the root cone; negative:
+        the cutter, and with it the opposite blade, runs that much deeper).
     """
 
     member: Member
@@ -50,6 +54,7 @@ class SlotFit:
     height: float
     point_width: float
     edge_radius: float
+    tip_height: float = math.nan
 
     @property
     def fits(self) -> bool:
@@ -191,4 +196,4 @@ def slot_fit(blank, setups, member, side, point_width: float | None = None, cach
     k = np.unravel_index(int(np.argmax(val)), val.shape)
     ol = setups[(Member(member), Side(side))].flank.outline
     return SlotFit(Member(member), Side(side), float(val[k]), float((R[k] - ol.Ri) / (ol.Re - ol.Ri)), float(h[k]),
-                   float(opp.point_width), float(opp.edge_radius))
+                   float(opp.point_width), float(opp.edge_radius), float(np.min(h[:, 0])))
