@@ -102,6 +102,10 @@ def slot_messages(spec, blank, setups, checks) -> dict:
             todo = (f"no point width fits: the {s.value} side's settings put the cutter's tip plane, its root and "
                     f"the opposite blade's tip {-res.tip_height:.3f} mm below the root cone, where the opposite blade "
                     f"undercuts the {_other(s).value} flank's fillet; change {keys}")
+        elif isinstance(twin := checks.get((m, _other(s))), SlotFit) and twin.tip_height < -_ROOT_TOL_MM:
+            todo = (f"no point width fits: the {_other(s).value} side's settings put its root "
+                    f"{-twin.tip_height:.3f} mm below the root cone, and its flank with it into this space; "
+                    f"change {keys}")
         else:
             todo = (f"no point width fits: the two flanks' settings leave no tooth space there (the flanks cross); "
                     f"change {keys}, or the tooth thickness")
