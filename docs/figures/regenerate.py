@@ -10,8 +10,9 @@ Each figure is made the way a user would make it, and copied here under its docs
   n1 = 3000 1/min, grade 6, sigma_Hlim = 1500, sigma_Flim = 480 N/mm^2, oil 100 mm^2/s) and its loaded TCA at that
   torque (gear torque 200 * 65 / 23 N m), the job's ``root_stress.png``. Its FE root stress takes about a minute.
 
-Run from the repository root: ``python docs/figures/regenerate.py [--only NAME ...] [--cache-dir DIR]`` (NAME: a file
-name above without ``.png``). A failed step stops the script and leaves the figures of the steps before it written.
+Run from the repository root: ``python docs/figures/regenerate.py [--only NAME ...] [--cache-dir DIR] [--keep DIR]``
+(NAME: a file name above without ``.png``; ``--keep``: leave the runs' output directories, with their report.json,
+in DIR). A failed step stops the script and leaves the figures of the steps before it written.
 """
 
 from __future__ import annotations
@@ -83,13 +84,15 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--only", nargs="*", default=None, help="figure names (without .png); default: all")
     ap.add_argument("--cache-dir", default=None, help="spiralbevel cache (compiled kernels, FE compliance)")
+    ap.add_argument("--keep", default=None, help="directory to keep the runs' outputs in (default: removed)")
     a = ap.parse_args(argv)
     known = (*SEED001, *SYNTHESIZED, ROOT_STRESS)
     want = set(a.only) if a.only else set(known)
     if want - set(known):
         raise SystemExit(f"unknown figure(s) {sorted(want - set(known))}; known: {', '.join(known)}")
-    with tempfile.TemporaryDirectory() as tmp:
-        tmp = Path(tmp)
+    with tempfile.TemporaryDirectory() as scratch:
+        tmp = Path(a.keep) if a.keep else Path(scratch)
+        tmp.mkdir(parents=True, exist_ok=True)
         if want & set(SEED001):
             _run([sys.executable, "examples/seed001_cmc.py", tmp / "seed001", "--figures", tmp / "seed001"])
             for name in SEED001:
