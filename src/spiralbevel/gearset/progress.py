@@ -5,11 +5,6 @@ from __future__ import annotations
 from contextlib import contextmanager
 
 
-#: redraws per second of the progress bar on a terminal: the steps of a job take 0.1 s to tens of seconds, and each
-#: redraw lays out the bar's whole table (about 1-2 ms of CPU; rich's default of 10 a second cost 0.1 s of a 3 s run)
-REFRESH_PER_SECOND = 4
-
-
 class Steps:
     """Counts steps and shows them on a rich progress bar when enabled."""
 
@@ -23,16 +18,11 @@ class Steps:
 
     def __enter__(self):
         if self.enabled:
-            from rich import get_console
             from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
-            # redrawn REFRESH_PER_SECOND times a second on a terminal; elsewhere (a file, a pipe) rich shows only the
-            # final state, when the bar stops, so it is not redrawn in between (each redraw builds the whole table)
             self._progress = Progress(TextColumn("{task.description:<38}"), BarColumn(),
                                       TextColumn("{task.completed}/{task.total}"),
-                                      TimeElapsedColumn(), transient=False,
-                                      auto_refresh=get_console().is_terminal,
-                                      refresh_per_second=REFRESH_PER_SECOND)
+                                      TimeElapsedColumn(), transient=False)
             self._progress.__enter__()
             self._task = self._progress.add_task("starting", total=self.total)
         return self
