@@ -246,3 +246,38 @@ def test_root_slot_width_closed_form():
     assert np.all(root_slot_width(pa, pb, 30) < 0)  # 30 teeth of 0.3 rad at the root cannot fit
     with pytest.raises(DesignError, match="z"):
         root_slot_width(pa, pb, 0)
+
+
+def test_open_edges_check_is_the_full_orientation_check():
+    """``MeshBuilder.add_patch(..., open_edges=...)`` (used for the copies of a gear's sector) checks only a patch's
+    open boundary: it must accept and refuse exactly what the check of every edge does. Reference: the full check on
+    the same patches; and the open boundary of an n x m grid patch is its perimeter, 2 (n - 1) + 2 (m - 1) edges."""
+    from spiralbevel.geometry.surface_mesh import MeshBuilder, OrientationError, grid_faces, open_edges
+
+    n, m = 5, 4
+    idx = np.arange(n * m).reshape(n, m)
+    faces = grid_faces(idx)
+    rim = open_edges(faces)
+    assert len(rim) == 2 * (n - 1) + 2 * (m - 1)
+    undirected = {tuple(sorted(e)) for e in rim.tolist()}
+    perimeter = {tuple(sorted(e)) for e in zip(idx[0, :-1], idx[0, 1:])} | \
+        {tuple(sorted(e)) for e in zip(idx[-1, :-1], idx[-1, 1:])} | \
+        {tuple(sorted(e)) for e in zip(idx[:-1, 0], idx[1:, 0])} | \
+        {tuple(sorted(e)) for e in zip(idx[:-1, -1], idx[1:, -1])}
+    assert undirected == perimeter
+    # a neighbouring patch on the next grid rows, sharing the last row of the first: accepted when it continues the
+    # orientation, refused when it is flipped, by both checks
+    nxt = grid_faces(np.arange((n - 1) * m, (2 * n - 1) * m).reshape(n, m))
+    for flipped in (False, True):
+        second = nxt[:, ::-1] if flipped else nxt
+        verdicts = []
+        for use_open in (False, True):
+            b = MeshBuilder()
+            b.add_vertices(np.zeros(((2 * n - 1) * m, 3)))
+            b.add_patch(faces, fixed=True, open_edges=rim if use_open else None)
+            try:
+                b.add_patch(second, fixed=True, open_edges=open_edges(second) if use_open else None)
+                verdicts.append("accepted")
+            except OrientationError:
+                verdicts.append("refused")
+        assert verdicts == (["refused", "refused"] if flipped else ["accepted", "accepted"])

@@ -207,3 +207,16 @@ def test_flank_and_domain_checks():
     other = ParallelogramDomain(0.0, 0.6, 0.3, 0.5, 0.5)
     with pytest.raises(DesignError, match="base_cone_angle"):
         plan_toolpath(flank, other, R_TOOL, H)
+
+
+def test_march_samples_are_linspace_bit_for_bit():
+    """The march's phi samples (``_samples``, linspace's arithmetic without its argument handling) are the floats of
+    ``np.linspace`` itself: random ends over the flank parameters' scales, equal ends and denormally close ends."""
+    from spiralbevel.manufacturing.toolpath import _N_OVERLAP, _samples
+
+    rng = np.random.default_rng(7)
+    lo = rng.uniform(-1.0, 1.0, 400) * 10.0 ** rng.integers(-6, 2, 400)
+    hi = lo + rng.uniform(0.0, 1.0, 400) * 10.0 ** rng.integers(-12, 1, 400)
+    cases = list(zip(lo, hi)) + [(0.3, 0.3), (0.0, 5e-324), (-0.2, 0.0)]
+    for a, b in cases:
+        assert np.array_equal(_samples(float(a), float(b)), np.linspace(a, b, _N_OVERLAP)), (a, b)

@@ -29,6 +29,7 @@ from spiralbevel.geometry.surface_mesh import (
     TriangleMesh,
     chord_param,
     grid_faces,
+    open_edges,
     orientation_sign,
     strip_faces,
     weld,
@@ -273,10 +274,15 @@ def _rotated_sectors(builder, br: _Bridger, pa, pb, na, nb, rots, b_leads) -> li
         m[own_idx] = base0 + k * block + np.arange(block)
         m[ghost] = base0 + ((k + 1) % z) * block + pos[trail]
         maps.append(m)
+    # sector k's vertices are new except its ghosts (the next sector's trailing root edge, an open edge of both), so
+    # only the open edges of the sector's tooth and root land can meet the other sectors and the end faces: checking
+    # and recording those is the full orientation check (MeshBuilder.add_patch, open_edges)
+    tooth_faces, land_faces = sector.faces[:n_tooth_faces], sector.faces[n_tooth_faces:]
+    tooth_open, land_open = open_edges(tooth_faces), open_edges(land_faces)
     for m in maps:
-        builder.add_patch(m[sector.faces[:n_tooth_faces]], fixed=True, name="tooth")
+        builder.add_patch(m[tooth_faces], fixed=True, name="tooth", open_edges=m[tooth_open])
     for m in maps:
-        builder.add_patch(m[sector.faces[n_tooth_faces:]], fixed=True, name="root land")
+        builder.add_patch(m[land_faces], fixed=True, name="root land", open_edges=m[land_open])
         for (u, v), r in tbr._cache.items():
             U, V, r = m[u], m[v], m[r]
             br._cache[(U, V) if U < V else (V, U)] = r if U < V else r[::-1]
