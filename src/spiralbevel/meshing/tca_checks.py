@@ -65,16 +65,19 @@ def te_level(res, z1: int, window: float = 0.4) -> float | None:
 
 
 def parabolic_level(phi, te, z1: int, window: float = 0.4) -> float | None:
-    """Parabolic TE level (arcsec): a least-squares parabola through the TE within ``window`` of half a mesh cycle
-    (pi/z1) around the mean contact, evaluated at half a mesh cycle, as -a2 (pi/z1)^2.
+    """Parabolic TE level (arcsec) at the mean contact: -TE''/2 (pi/z1)^2 at the TE's stationary point, from a
+    least-squares cubic through the TE within ``window`` of half a mesh cycle (pi/z1) around it.
 
-    The mean contact M is where the local synthesis puts the stationary point of the TE (TE' = 0, TE'' from the
-    design level). With M at the mean pitch point it is the TCA's mean position (phi = 0); with M moved below the pitch
-    line (the default synthesis' depth candidates) it is not, and a window centred on phi = 0 sees the third-order
-    part of the TE as a different curvature (10/19 at beta 44.9 deg, bench/bench_robustness.py sample ``100 2``,
-    coast: M 0.19 mm below the pitch line, the vertex at +4.5 deg of an 18 deg half cycle, 9.3 arcsec fitted at
-    phi = 0, 7.9 at the vertex, for a synthesis at 8). So the first fit is centred on phi = 0 and the next two each
-    on the vertex of the one before, while that vertex lies inside the window around phi = 0.
+    The mean contact M is where the local synthesis puts the stationary point of the TE (TE' = 0) and prescribes its
+    second derivative (the design level). With M at the mean pitch point that is the TCA's mean position (phi = 0);
+    with M moved below the pitch line (the default synthesis' depth candidates) it is not, and a parabola fitted
+    around phi = 0 reads the TE's third-order part as curvature (10/19 at beta 44.9 deg, bench/bench_robustness.py
+    sample ``100 2``, coast: M 0.19 mm below the pitch line, the stationary point at +0.24 of an 18 deg half cycle,
+    9.3 arcsec from a parabola around phi = 0, 7.9 at the stationary point, for a synthesis at 8). A cubic also keeps
+    a window that holds one position more on one side from bending the level. The cubic is fitted around phi = 0,
+    then (at most twice) around its stationary point nearest the previous centre, while that point lies inside the
+    window around phi = 0; without one there, or with fewer than four positions, the level is that of a parabola
+    fitted around phi = 0 (the same at a stationary point at phi = 0 and a symmetric window).
 
     Parameters
     ----------
@@ -89,21 +92,34 @@ def parabolic_level(phi, te, z1: int, window: float = 0.4) -> float | None:
 
     Returns
     -------
-    float, arcsec, or None with fewer than three contact positions in the window.
+    float, arcsec, or None with fewer than three contact positions in the window around phi = 0.
     """
     phi, te = np.asarray(phi, float), np.asarray(te, float)
     half = np.pi / z1
-    centre, a2 = 0.0, None
+    reach = window * half
+    level, centre = None, 0.0
     for _ in range(3):
-        near = np.isfinite(te) & (np.abs(phi - centre) <= window * half)
-        if np.sum(near) < 3:
+        near = np.isfinite(te) & (np.abs(phi - centre) <= reach)
+        if np.sum(near) < 4:
             break
-        a2, a1, _a0 = np.polyfit(phi[near] - centre, te[near], 2)
-        vertex = centre - a1 / (2.0 * a2) if a2 else np.inf
-        if not abs(vertex) <= window * half:
+        p = np.polyfit(phi[near] - centre, te[near], 3)
+        roots = np.roots(np.polyder(p))
+        roots = roots[np.abs(roots.imag) <= 1e-12 * half].real
+        if not roots.size:
             break
-        centre = vertex
-    return None if a2 is None else float(-a2 * half ** 2)
+        s = float(roots[np.argmin(np.abs(roots))])
+        if not abs(centre + s) <= reach:
+            break
+        level = float(-0.5 * np.polyval(np.polyder(p, 2), s) * half ** 2)
+        if abs(s) <= 1e-3 * half:
+            break
+        centre += s
+    if level is not None:
+        return level
+    near = np.isfinite(te) & (np.abs(phi) <= reach)
+    if np.sum(near) < 3:
+        return None
+    return float(-np.polyfit(phi[near], te[near], 2)[0] * half ** 2)
 
 
 def te_level_warnings(res, side: str, design_arcsec: float | None, z1: int) -> list[str]:
