@@ -80,7 +80,7 @@ def test_rescue_tries_the_fewest_edge_positions_first_and_stops_at_the_first_ins
     check = math.radians(0.05)
     n = dr.rescue_by_depth(offs, s.synthesize, s.deviation, s.judge, check, 0.8)
     # -55 (2 off) first, fails to converge; then -40 (3 off): probe, scaled synthesis, inside -> stop; 0 deg (5 off)
-    # is not tried; 40 deg (already inside) is not a candidate; 70 deg (41: no flank that meshes) comes last
+    # is not tried; 40 deg (already inside) is not a candidate; 70 deg (41: no flank that meshes) would come last
     assert [c[0] for c in s.calls] == [-55.0, -40.0, -40.0]
     assert n == 3
     frac = s.judged[-1][1]

@@ -67,8 +67,8 @@ def rescue_by_depth(pitch_offs: dict, synthesize: Callable, deviation: Callable,
     ----------
     pitch_offs : {(float, str): int}
         TCA positions off the flanks of each converged pitch-point candidate: (path direction deg, set name) -> count.
-        Candidates with no position off (nothing to rescue) or none on the flank (the flank does not cover the face
-        or mesh) are skipped.
+        Candidates with no position off (nothing to rescue) are skipped; those with every position off (the flank
+        does not cover the face, or the TCA fails) come last.
     synthesize : callable (eta deg, depth fraction, set name) -> SynthesisResult
         Raises ConvergenceError or GeometryError when the synthesis fails.
     deviation : callable (SynthesisResult) -> float, rad
