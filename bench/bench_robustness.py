@@ -104,9 +104,9 @@ def develop(text, beta):
 
 def te_level(sec, z1):
     """TE level (arcsec) of one side's TCA: the drop over half a mesh cycle of the least-squares parabola through
-    the TE within 0.4 of half a mesh cycle of the mean contact, taken at the TE's stationary point, where the
-    synthesis puts the mean contact (the job's own TE-level check, ``meshing.tca_checks.parabolic_level``); NaN with
-    fewer than three such positions."""
+    the TE within 0.4 of half a mesh cycle of the mean contact, centred on the TE's stationary point when a depth
+    candidate moved the mean contact off the mean position (the job's own TE-level check,
+    ``meshing.tca_checks.parabolic_level``); NaN with fewer than three such positions."""
     level = parabolic_level(np.radians(sec["pinion_rotation_deg"]), sec["transmission_error_arcsec"], z1)
     return float("nan") if level is None else level
 

@@ -2,7 +2,8 @@
 (bench/bench_robustness.py 100 2, design 56). The default synthesis develops its coast side with M at half the
 middle of the working depth (0.19 mm below the gear's pitch line); the TE's stationary point, where the synthesis
 prescribes the design level, then lies about a quarter of half a mesh cycle off the TCA's mean position. The level
-taken there (``tca_checks.parabolic_level``) is the design's; a parabola centred on the mean position read 9.3 arcsec.
+fitted around it (``tca_checks.parabolic_level``) is the design's; a parabola centred on the mean position read
+9.3 arcsec.
 """
 
 import math
