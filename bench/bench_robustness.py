@@ -32,6 +32,7 @@ from spiralbevel.job.facemilled import DEFAULT_SYNTHESIS
 from spiralbevel.job.blank import blank_from_design
 from spiralbevel.job.tca import run_pair_tca
 from spiralbevel.gearset.slot_check import slot_checks
+from spiralbevel.meshing.tca_checks import parabolic_level
 
 TEMPLATE = """
 title = "sample"
@@ -103,12 +104,11 @@ def develop(text, beta):
 
 def te_level(sec, z1):
     """TE level (arcsec) of one side's TCA: the drop over half a mesh cycle of the least-squares parabola through
-    the TE within 0.4 of half a mesh cycle of the mean contact (as tests/cli/test_developed_pair.py); NaN with fewer
-    than three such positions."""
-    half = math.pi / z1
-    phi, te = np.radians(sec["pinion_rotation_deg"]), np.asarray(sec["transmission_error_arcsec"])
-    near = np.abs(phi) <= 0.4 * half
-    return float(-np.polyfit(phi[near], te[near], 2)[0] * half**2) if near.sum() >= 3 else float("nan")
+    the TE within 0.4 of half a mesh cycle of the mean contact, centred on the TE's stationary point when a depth
+    candidate moved the mean contact off the mean position (the job's own TE-level check,
+    ``meshing.tca_checks.parabolic_level``); NaN with fewer than three such positions."""
+    level = parabolic_level(np.radians(sec["pinion_rotation_deg"]), sec["transmission_error_arcsec"], z1)
+    return float("nan") if level is None else level
 
 
 #: the TE-level check of the developed pair (issue acceptance): the design level (the default synthesis' 8 arcsec)

@@ -365,6 +365,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
     mid = 0.5 * (float(blank.ham1) - float(blank.ham2))     # middle of the working depth below the pitch line
     best, spare, tried, last = None, None, 0, None
     done = set()    # (path direction, depth fraction, set name) synthesized, converged or not
+    pitch_offs: dict = {}   # (path direction, set name): positions off the flanks, M at the pitch point
 
     def synthesize(eta, frac, free):
         nonlocal tried
@@ -380,7 +381,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
             _require_near_branch(res, pin)
         return res
 
-    def judge(res, frac, free):
+    def judge(res, frac, free, eta=None):
         """Positions off the flanks of a default candidate (after the fillet retry), kept as best or spare."""
         nonlocal best, spare
         off = bearing_off_flank(blank, res.pinion_flank, gear.flank)
@@ -393,6 +394,8 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
         # candidate is taken only when it keeps the bearing inside the flanks and the angles within the check
         if frac and off == 0 and not _angles_hit(blank, res.pinion_flank):
             off = _CHECK_POSITIONS
+        if not frac and eta is not None:
+            pitch_offs[(eta, free)] = off
         if (best is None or off < best[0]) and (off == 0 or not frac):
             best = (off, res, free)
         elif spare is None or off < spare[0]:
@@ -436,7 +439,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
                 except (ConvergenceError, GeometryError) as err:
                     last = err
                     continue
-        if judge(res, frac, free) == 0 or tried >= max_syntheses:
+        if judge(res, frac, free, eta) == 0 or tried >= max_syntheses:
             break
     if default and (best is not None or spare is not None) and (best is None or best[0] > 0):
         # no candidate kept the bearing inside: the other sets of solved settings at the mean pitch point
@@ -452,8 +455,14 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
                 except (ConvergenceError, GeometryError) as err:
                     last = err
                     continue
-                if judge(res, 0.0, free) == 0:
+                if judge(res, 0.0, free, eta) == 0:
                     return best, tried, last
+    if default and mid > 0 and pitch_offs and (best is None or best[0] > 0):
+        # still an edge contact: M toward the pinion's tip, as deep as the angle check allows (gearset/depth_rescue.py)
+        from .depth_rescue import rescue_by_depth
+
+        rescue_by_depth(pitch_offs, synthesize, lambda r: _angle_deviation(blank, r.pinion_flank), judge,
+                        math.radians(CHECK_ANGLE_DEG), DEFAULT_DEPTH_ANGLE_MARGIN)
     return (best if best is not None else spare), tried, last
 
 

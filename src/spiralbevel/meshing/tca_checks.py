@@ -13,8 +13,8 @@ import numpy as np
 
 from .tca_result import ARCSEC
 
-__all__ = ["TE_LEVEL_TOL", "bearing_warnings", "contact_ratio", "contact_ratio_warnings", "te_level",
-           "te_level_warnings", "tca_checks"]
+__all__ = ["STATIONARY_SHIFT", "TE_LEVEL_TOL", "bearing_warnings", "contact_ratio", "contact_ratio_warnings",
+           "parabolic_level", "te_level", "te_level_warnings", "tca_checks"]
 
 #: relative tolerance of the fitted parabolic TE level against the designed one (the acceptance of a developed pair:
 #: at the design TE level within 10 %)
@@ -59,17 +59,63 @@ def bearing_warnings(res, side: str, synthesized: bool) -> list[str]:
 
 
 def te_level(res, z1: int, window: float = 0.4) -> float | None:
-    """Parabolic TE level (arcsec) of a TCA: a least-squares parabola through the TE of the pair in contact within
-    ``window`` of half a mesh cycle around the mean contact, evaluated at half a mesh cycle (pi/z1), as
-    -a2 (pi/z1)^2. ``None`` with fewer than three contact positions in the window."""
+    """Parabolic TE level (arcsec) of a TCA: :func:`parabolic_level` of its TE against the pinion rotation from the
+    TCA's mean position. ``None`` with fewer than three contact positions in the window."""
+    return parabolic_level(np.asarray(res.phi1) - float(res.phi1_mean), np.asarray(res.te) / ARCSEC, z1, window)
+
+
+#: the parabola of :func:`parabolic_level` is centred on the TE's stationary point only when that lies more than this
+#: fraction of half a mesh cycle from the TCA's mean position: a depth candidate of the default synthesis moves M by
+#: about a quarter (0.24 on 10/19 at beta 44.9 deg), while the stationary point of a pitch-point pair, estimated from
+#: the sampled TE, scatters by a few hundredths (0.06 on 13/20 at beta 10.3 deg, coast, where an adjacent pair's
+#: corner contact bumps one of 21 positions by 0.4 arcsec; bench/bench_robustness.py sample ``100 2``)
+STATIONARY_SHIFT = 0.1
+
+
+def parabolic_level(phi, te, z1: int, window: float = 0.4) -> float | None:
+    """Parabolic TE level (arcsec) at the mean contact: a least-squares parabola through the TE within ``window`` of
+    half a mesh cycle (pi/z1) around the mean contact, evaluated at half a mesh cycle, as -a2 (pi/z1)^2.
+
+    The mean contact M is where the local synthesis puts the stationary point of the TE (TE' = 0) and prescribes its
+    second derivative (the design level). With M at the mean pitch point that is the TCA's mean position (phi = 0);
+    with M moved below the pitch line (the default synthesis' depth candidates) it is not, and a parabola fitted
+    around phi = 0 reads the TE's third-order part as curvature (10/19 at beta 44.9 deg, bench/bench_robustness.py
+    sample ``100 2``, coast: M 0.19 mm below the pitch line, the stationary point at +0.24 of an 18 deg half cycle,
+    9.3 arcsec around phi = 0, 7.9 around the stationary point, for a synthesis at 8). The stationary point is that of
+    a least-squares cubic through the window around phi = 0 nearest phi = 0; the parabola is centred on it when it
+    lies more than ``STATIONARY_SHIFT`` of half a mesh cycle from phi = 0 and inside the window, else on phi = 0.
+
+    Parameters
+    ----------
+    phi : (n,) float, rad
+        Pinion rotation from the TCA's mean position.
+    te : (n,) float, arcsec
+        Transmission error (NaN where no contact).
+    z1 : int
+        Pinion teeth.
+    window : float
+        Half width of the fitted window as a fraction of half a mesh cycle.
+
+    Returns
+    -------
+    float, arcsec, or None with fewer than three contact positions in the window.
+    """
+    phi, te = np.asarray(phi, float), np.asarray(te, float)
     half = np.pi / z1
-    phi = np.asarray(res.phi1) - float(res.phi1_mean)
-    te = np.asarray(res.te) / ARCSEC
-    near = np.isfinite(te) & (np.abs(phi) <= window * half)
+    reach = window * half
+    near = np.isfinite(te) & (np.abs(phi) <= reach)
+    centre = 0.0
+    if np.sum(near) >= 4:
+        roots = np.roots(np.polyder(np.polyfit(phi[near], te[near], 3)))
+        roots = roots[np.abs(roots.imag) <= 1e-12 * half].real
+        if roots.size:
+            s = float(roots[np.argmin(np.abs(roots))])
+            if STATIONARY_SHIFT * half < abs(s) <= reach:
+                centre = s
+                near = np.isfinite(te) & (np.abs(phi - centre) <= reach)
     if np.sum(near) < 3:
         return None
-    a2 = np.polyfit(phi[near], te[near], 2)[0]
-    return float(-a2 * half ** 2)
+    return float(-np.polyfit(phi[near] - centre, te[near], 2)[0] * half ** 2)
 
 
 def te_level_warnings(res, side: str, design_arcsec: float | None, z1: int) -> list[str]:
