@@ -354,9 +354,9 @@ def _require_near_branch(res, pin):
                                iterations=res.iterations, residual=res.residual, last=None)
 
 
-#: added to the rank (positions off the flanks) of a default candidate that closes the tooth space
-#: (gearset/slot_open.py): after every candidate with as many positions off the flanks and an open slot, before any
-#: with one position more, so that when no candidate opens the slot the one taken without the rule is taken
+#: rank (positions off the flanks) of a default candidate that keeps the bearing inside but closes the tooth space
+#: (gearset/slot_open.py): after every candidate that keeps the bearing inside with the slot open, before any with a
+#: position off the flanks, so that when no candidate opens the slot the one taken without the rule is taken
 SLOT_CLOSED_RANK = 0.5
 
 
@@ -379,10 +379,10 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
     kept when the TCA then has fewer positions off the flanks.
 
     With ``slot`` = (the other pinion side's final FlankSetup, {Side: floor}) (the side synthesized last), a default
-    candidate that leaves a tooth space that no cutter fits down to the floor of its point width
-    (:func:`~spiralbevel.gearset.slot_open.slot_closed`) ranks ``SLOT_CLOSED_RANK`` behind the candidates with as
-    many positions off the flanks: the search goes on, and takes it only when no other candidate keeps as many
-    positions on the flanks with the slot open.
+    candidate that keeps the bearing inside but leaves a tooth space that no cutter fits down to the floor of its point
+    width (:func:`~spiralbevel.gearset.slot_open.slot_closed`) ranks ``SLOT_CLOSED_RANK``: the search goes on, and
+    takes it only when no later candidate keeps the bearing inside with the slot open (only a candidate that would
+    end the search is checked: one check per side).
 
     Returns (best, tried, last error): best = (positions off the flank, SynthesisResult, free set name) or None.
     """
@@ -426,10 +426,10 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
         # candidate is taken only when it keeps the bearing inside the flanks and the angles within the check
         if frac and off == 0 and not _angles_hit(blank, res.pinion_flank):
             off = _CHECK_POSITIONS
-        if (off < _CHECK_POSITIONS and slot_other is not None and (best is None or off < best[0])
-                and slot_closed(blank, {s1: FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
-                                                       res.pinion_flank, ""), slot_other.side: slot_other}, floors)):
-            off += SLOT_CLOSED_RANK     # only a candidate that could be taken is checked
+        if off == 0 and slot_other is not None and slot_closed(
+                blank, {s1: FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings, res.pinion_flank, ""),
+                        slot_other.side: slot_other}, floors):
+            off = SLOT_CLOSED_RANK
         if (best is None or off < best[0]) and (off == 0 or not frac):
             best = (off, res, free)
         elif spare is None or off < spare[0]:

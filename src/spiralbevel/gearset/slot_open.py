@@ -41,23 +41,20 @@ def slot_closed(blank, pinion_setups, floors) -> bool:
 
     Notes
     -----
-    At most two opposite-blade generations per side: at the cutter's point width (fits: done), then at the floor
-    (the intrusion falls as the point narrows, so a width in between fits exactly when the floor does); the opposite
-    flank's profile rows are solved once for both (``intrusion_field``'s cache).
+    One opposite-blade generation per side, at the floor: the intrusion falls as the point narrows (the refit's
+    premise), so some width from the cutter's own down to the floor fits exactly when the floor does (by
+    ``SLOT_FIT_MM``, what a refit leaves; by ``SLOT_TOL_MM`` at a floor of 1, a width kept as given).
     """
     from .slot_check import SLOT_FIT_MM, SLOT_TOL_MM, slot_fit
 
     setups = {(Member.PINION, s): st for s, st in pinion_setups.items()}
     for side in (Side.CONVEX, Side.CONCAVE):
-        w0 = float(pinion_setups[side].cutter.point_width)
-        rows: dict = {}
+        floor = min(float(floors[side]), 1.0)
+        tol = SLOT_TOL_MM if floor >= 1.0 else SLOT_FIT_MM
         try:
-            if slot_fit(blank, setups, Member.PINION, side, w0, cache=rows).intrusion <= SLOT_TOL_MM:
-                continue
-            if floors[side] < 1.0 and slot_fit(blank, setups, Member.PINION, side, floors[side] * w0,
-                                               cache=rows).intrusion <= SLOT_FIT_MM:
-                continue
+            if slot_fit(blank, setups, Member.PINION, side,
+                        floor * float(pinion_setups[side].cutter.point_width)).intrusion > tol:
+                return True
         except (GeometryError, DesignError):
             return True
-        return True
     return False
