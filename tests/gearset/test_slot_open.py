@@ -107,8 +107,8 @@ def test_clearance_side_does_not_decide_the_fit(without_rule):
     where the spread-blade model has the opposite blade's tip, with a clearance side of the blade designer's choosing.
     The brute-force sweep at the floor width, with the clearance side at the convex flank's blade angle and turned
     by -5 deg, finds the same collision (measured 0.352 and 0.355 mm, at the convex flank's root edge; the check's own
-    envelope gives 0.037 and -0.619 mm): the tip corner decides, not the clearance side. 0.03 mm: the sweep's points lie ~0.05 mm apart and the two
-    runs pick their face station independently."""
+    envelope gives 0.037 and -0.619 mm): the tip corner decides, not the clearance side. 0.03 mm: the sweep's points
+    lie ~0.05 mm apart and the two runs pick their face station independently."""
     import math
 
     blank, setups = without_rule
