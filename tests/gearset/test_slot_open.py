@@ -10,6 +10,7 @@ cutter's opposite blade cuts into the convex flank; the rule takes a later coast
 """
 
 import importlib.util
+import math
 import warnings
 from dataclasses import replace
 from pathlib import Path
@@ -61,8 +62,9 @@ def _at_floor(setups, side):
     """The setups with the cutter of pinion ``side`` narrowed to the refit's floor (edge radius as the point holds)."""
     st = setups[(Member.PINION, side)]
     w = slot_open.SLOT_FLOOR * st.cutter.point_width
+    a = st.cutter.blade_angle      # the largest edge radius a point w wide holds: rho (1 - sin a) / cos a = w / 2
     c = replace(st.cutter, point_width=w,
-                edge_radius=min(st.cutter.edge_radius, 0.9 * sc._edge_limit(w, st.cutter.blade_angle)))
+                edge_radius=min(st.cutter.edge_radius, 0.45 * w * math.cos(a) / (1.0 - math.sin(a))))
     out = dict(setups)
     out[(Member.PINION, side)] = replace(st, cutter=c)
     return out
@@ -109,8 +111,6 @@ def test_clearance_side_does_not_decide_the_fit(without_rule):
     by -5 deg, finds the same collision (measured 0.352 and 0.355 mm, at the convex flank's root edge; the check's own
     envelope gives 0.037 and -0.619 mm): the tip corner decides, not the clearance side. 0.03 mm: the sweep's points
     lie ~0.05 mm apart and the two runs pick their face station independently."""
-    import math
-
     blank, setups = without_rule
     st = _at_floor(setups, Side.CONCAVE)
     b = st[(Member.PINION, Side.CONVEX)]
