@@ -225,7 +225,8 @@ def synthesize_sides(spec, blank, setups, sy=None):
     from .problems import restated
 
     try:
-        return _synthesize_sides(spec.synthesis if sy is None else sy, blank, setups, syn, _derived_edge_radius(spec))
+        return _synthesize_sides(spec.synthesis if sy is None else sy, blank, setups, syn, _derived_edge_radius(spec),
+                                 _slot_floors(spec))
     except DesignError as err:
         raise restated(err, SYNTHESIS_PATHS, default="synthesis") from err
 
@@ -244,11 +245,27 @@ def _derived_edge_radius(spec) -> dict:
     return {s: fm.edge_radius is None and getattr(fm, f"pinion_{s.value}").cutter is None for s in SIDES}
 
 
-def _synthesize_sides(sy, blank, setups, syn, refit=None):
+def _slot_floors(spec) -> dict:
+    """{pinion side: narrowest point width the refit tries, as a fraction of the cutter's}: ``SLOT_FLOOR`` for a
+    derived point width, 1 for a given one (``face_milling.point_width`` or the side's cutter; kept as given)."""
+    from .slot_open import SLOT_FLOOR
+
+    fm = spec.face_milling
+    return {s: SLOT_FLOOR if fm.point_width is None and getattr(fm, f"pinion_{s.value}").cutter is None else 1.0
+            for s in SIDES}
+
+
+def _synthesize_sides(sy, blank, setups, syn, refit=None, floors=None):
     new, results = {}, {}
     refit = refit or {}
-    for name in sy.sides:
+    for k_side, name in enumerate(sy.sides):
         s1, s2 = PAIR_SIDES[name]
+        # the slot rule of the default synthesis (gearset/slot_open.py) on the side whose other pinion side is final
+        # (synthesized before it, or not synthesized at all)
+        s_o = Side.CONCAVE if s1 is Side.CONVEX else Side.CONVEX
+        later = {PAIR_SIDES[n][0] for n in sy.sides[k_side + 1:]}
+        slot_other = (None if floors is None or s_o in later or (Member.PINION, s_o) not in setups
+                      else new.get((Member.PINION, s_o), setups[(Member.PINION, s_o)]))
         gear = setups[(Member.GEAR, s2)]
         if sy.motion_curve == "cmc":
             from ..meshing.synthesis.cmc_design import design_seed001_style
@@ -273,7 +290,8 @@ def _synthesize_sides(sy, blank, setups, syn, refit=None):
             best, tried, last = _candidates(sy, blank, gear, pin, s1, te, syn, default,
                                             DEFAULT_MAX_SYNTHESES if k_level == 0 else DEFAULT_FALLBACK_SYNTHESES,
                                             refit.get(s1, False),
-                                            DEFAULT_OTHER_SET_SYNTHESES if k_level == 0 else DEFAULT_FALLBACK_SYNTHESES)
+                                            DEFAULT_OTHER_SET_SYNTHESES if k_level == 0 else DEFAULT_FALLBACK_SYNTHESES,
+                                            (slot_other, floors))
             # a lower level only when this one reached the geometry but no flank covered the face and meshed
             if best is None or not default or best[0] < _CHECK_POSITIONS:
                 break
@@ -336,7 +354,13 @@ def _require_near_branch(res, pin):
                                iterations=res.iterations, residual=res.residual, last=None)
 
 
-def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit=False, max_other=0):
+#: rank (positions off the flanks) of a default candidate that keeps the bearing inside but closes the tooth space
+#: (gearset/slot_open.py): after every candidate that keeps the bearing inside with the slot open, before any with a
+#: position off the flanks, so that when no candidate opens the slot the one taken without the rule is taken
+SLOT_CLOSED_RANK = 0.5
+
+
+def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit=False, max_other=0, slot=(None, None)):
     """The local syntheses of one pinion side at the TE level ``te`` (arcsec): the design file's path direction, or
     for the default synthesis the first of ``DEFAULT_CANDIDATES`` whose pair keeps the bearing inside both flanks
     over the whole mesh cycle (TCA: real contact, no edge, at every position); if none does, the one with the fewest
@@ -354,9 +378,18 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
     (:func:`~spiralbevel.gearset.pinion_fillet.fit_pinion_edge_radius`), both with the blade surface unchanged;
     kept when the TCA then has fewer positions off the flanks.
 
+    With ``slot`` = (the other pinion side's final FlankSetup, {Side: floor}) (the side synthesized last), a default
+    candidate that keeps the bearing inside but leaves a tooth space that no cutter fits down to the floor of its point
+    width (:func:`~spiralbevel.gearset.slot_open.slot_closed`) ranks ``SLOT_CLOSED_RANK``: the search goes on, and
+    takes it only when no later candidate keeps the bearing inside with the slot open (only a candidate that would
+    end the search is checked: one check per side).
+
     Returns (best, tried, last error): best = (positions off the flank, SynthesisResult, free set name) or None.
     """
     from .pinion_fillet import fit_pinion_edge_radius, lower_root
+    from .slot_open import slot_closed
+
+    slot_other, floors = slot
 
     hint = pin.source.startswith("basic settings solved")   # start from the pinion's solved basic settings
     # the design file's set of solved settings first; for the default synthesis the other sets after it
@@ -394,6 +427,10 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
         # candidate is taken only when it keeps the bearing inside the flanks and the angles within the check
         if frac and off == 0 and not _angles_hit(blank, res.pinion_flank):
             off = _CHECK_POSITIONS
+        if off == 0 and slot_other is not None and slot_closed(
+                blank, {s1: FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings, res.pinion_flank, ""),
+                        slot_other.side: slot_other}, floors):
+            off = SLOT_CLOSED_RANK
         if not frac and eta is not None:
             pitch_offs[(eta, free)] = off
         if (best is None or off < best[0]) and (off == 0 or not frac):
