@@ -78,50 +78,10 @@ def setup_flanks(spec, blank, with_synthesis: bool = False):
     verified = dict(out)
     fit_point_widths(spec, blank, out, synth)    # derived point widths that the tooth space does not hold
     if sy is not None and getattr(sy, "_default", False) and sy.motion_curve != "cmc":
-        out, synth = _keep_verified_bearings(spec, blank, sy, basic, verified, out, synth)
+        from .refit_bearing import keep_verified_bearings
+
+        out, synth = keep_verified_bearings(spec, blank, sy, basic, verified, out, synth)
     return (out, synth) if with_synthesis else out
-
-
-def _keep_verified_bearings(spec, blank, sy, basic, verified, out, synth):
-    """The default pair after the point-width refit keeps the bearing that its search verified.
-
-    The refit (:func:`~spiralbevel.gearset.slot_refit.fit_point_widths`) regenerates a flank whose narrower point
-    holds a smaller edge radius only; its fillet then reaches elsewhere and can take the contact at the ends of the
-    mesh cycle. The side synthesized last was judged after the refit it gets (``_off_after_refit``); the one before
-    it could not be (the other pinion side was not final yet), nor a gear flank the refit regenerated. Each default
-    side whose pinion or gear flank the refit regenerated is checked again; when more TCA positions leave the
-    flanks than the search verified, that side is synthesized again against the final flanks (the other pinion side
-    and the gear as refitted), its candidates judged after their own refit, and the pair refitted; kept when it has
-    fewer positions off the flanks.
-
-    Returns (setups, synthesis results): ``out`` and ``synth``, or the copies with a side synthesized again.
-    """
-    from ..errors import SpiralBevelError
-    from .slot_check import fit_point_widths
-
-    for name in sy.sides:
-        s1, s2 = PAIR_SIDES[name]
-        kp, kg = (Member.PINION, s1), (Member.GEAR, s2)
-        if name not in synth or (out[kp].flank is verified[kp].flank and out[kg].flank is verified[kg].flank):
-            continue
-        off = bearing_off_flank(blank, out[kp].flank, out[kg].flank)
-        if off <= bearing_off_flank(blank, verified[kp].flank, verified[kg].flank):
-            continue
-        setups = dict(out)
-        setups[kp] = basic[kp]
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", DesignWarning)    # said once already, by the first search
-                new, res = synthesize_sides(spec, blank, setups, sy.model_copy(update={"sides": (name,)}))
-        except SpiralBevelError:
-            continue
-        out2, synth2 = dict(out), dict(synth)
-        out2.update(new)
-        synth2.update(res)
-        fit_point_widths(spec, blank, out2, synth2)
-        if bearing_off_flank(blank, out2[kp].flank, out2[kg].flank) < off:
-            out, synth = out2, synth2
-    return out, synth
 
 
 #: defaults of the developed pair when a face-milled design has no ``[synthesis]`` section (docs/conventions.md,
@@ -406,26 +366,6 @@ def _require_near_branch(res, pin):
 SLOT_CLOSED_RANK = 0.5
 
 
-def _off_after_refit(blank, res, gear, s1, other) -> int:
-    """Positions off the flanks of a candidate pinion side after the point-width refit it will get against the other
-    pinion side ``other`` (:func:`~spiralbevel.gearset.slot_refit.refit_side`): 0 when the refit keeps its flank (the
-    point width fits, or the narrower point holds the edge radius); else the TCA of the flank generated with the
-    smaller edge radius, whose fillet reaches elsewhere (16/87 of bench/bench_robustness.py 100 2, coast: 0.969 ->
-    0.816 mm puts the contact on the fillet at 2 of 41 positions; 10/54 of 40 1, drive: 6.13 -> 1.55 mm at 19)."""
-    from .slot_refit import refit_side
-
-    setups = {(Member.PINION, s1): FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
-                                              res.pinion_flank, ""),
-              (Member.PINION, other.side): other}
-    try:
-        got = refit_side(blank, setups, Member.PINION, s1)
-    except (GeometryError, DesignError):
-        return 0                      # the slot check reports it; the bearing of this flank is the one verified
-    if got is None or got[1] is res.pinion_flank:
-        return 0
-    return bearing_off_flank(blank, got[1], gear.flank)
-
-
 def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit=False, max_other=0, slot=(None, None)):
     """The local syntheses of one pinion side at the TE level ``te`` (arcsec): the design file's path direction, or
     for the default synthesis the first of ``DEFAULT_CANDIDATES`` whose pair keeps the bearing inside both flanks
@@ -453,6 +393,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
     Returns (best, tried, last error): best = (positions off the flank, SynthesisResult, free set name) or None.
     """
     from .pinion_fillet import fit_pinion_edge_radius, lower_root
+    from .refit_bearing import off_after_refit
     from .slot_open import slot_closed
 
     slot_other, floors = slot
@@ -498,7 +439,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
                         slot_other.side: slot_other}, floors):
             off = SLOT_CLOSED_RANK
         if off == 0 and slot_other is not None and floors[s1] < 1.0:
-            off = _off_after_refit(blank, res, gear, s1, slot_other)
+            off = off_after_refit(blank, res, gear, s1, slot_other)
         if not frac and eta is not None:
             pitch_offs[(eta, free)] = off
         # a depth candidate is kept only with the bearing inside; one that closes the tooth space (SLOT_CLOSED_RANK)
