@@ -26,6 +26,9 @@ def run_facemilled(gs, out, steps, report, summary):
         from .slot_check import slot_report
 
         slot_report(spec, blank, setups, flanks)      # each cutter's opposite blade against the opposite flank
+        from .fillet_top import fillet_top_report
+
+        fillet_top_report(spec, blank, setups, flanks)   # each fillet against the mate's tip
         report["flanks"] = flanks
         report["machine_settings"] = machines
     with steps.step("tooth assembly"):
