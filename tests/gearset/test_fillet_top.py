@@ -175,3 +175,18 @@ def test_fires_on_the_synthesized_seed_example():
     checks = fillet_top_checks(gs.blank, gs.setups)
     assert {k for k, r in checks.items() if r.fires} == {(Member.PINION, Side.CONVEX), (Member.PINION, Side.CONCAVE)}
     assert _pinion_fillet_contact(gs.blank, gs.setups) == {"drive": True, "coast": True}
+
+
+def test_report_section_and_design_warning():
+    """``GearSet.machine_summary`` (as the job's flank report) carries each flank's ``fillet_top`` section and issues
+    the flagged flanks' warnings as ``DesignWarning`` naming the cause, also listed in the flank's ``checks``."""
+    from spiralbevel.errors import DesignWarning
+
+    gs = sb.GearSet.from_design("aviation_23x65_synthesized")
+    with pytest.warns(DesignWarning, match="pinion convex: fillet above the mate's tip"):
+        flanks = gs.machine_summary().to_dict()["flanks"]
+    for m in ("pinion", "gear"):
+        for s in ("convex", "concave"):
+            sec = flanks[m][s]["fillet_top"]
+            assert sec["fires"] == (m == "pinion") and len(sec["junction_mm"]) == 7
+            assert sec["fires"] == any(t.startswith(CAUSE) for t in flanks[m][s].get("checks", []))

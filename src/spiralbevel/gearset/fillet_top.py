@@ -22,8 +22,9 @@ member's root cone and normal to the pitch generatrix (as the blank's heights), 
   both members, the flank's mean-point normal pressure angle alpha_n and spiral angle beta, the mate's tip radius
   r_n,mate + h_a,mate(R). The mate's tip meets the line of action g = sqrt(r_a,mate^2 - r_b,mate^2) - r_n,mate sin
   alpha_n beyond the pitch point, on this member at radius sqrt(r_b^2 + (r_n sin alpha_n - g)^2), h_s(R) that radius
-  minus r_n plus the dedendum h_f,this(R). (The spur-gear check of the form diameter against the start of active
-  profile, ISO 21771.)
+  minus r_n plus the dedendum h_f,this(R) (the spur-gear check of the form diameter against the start of the active
+  profile). A first-order estimate (a generated profile is no involute, the angles are the mean point's); on the
+  designs below and in the robustness bench it picks the sides whose TCA shows the fillet contact.
 
 The check fires where h_j(R) > h_s(R) + ``FILLET_TOP_TOL_MM``: there the mate's tip, in mesh, runs into the fillet,
 and the TCA shows an edge contact at the junction whatever the synthesis of the working flanks does. The measure is
@@ -40,9 +41,10 @@ a root lifted by the synthesis). The remedies, each a design-file key: more clea
 (``gear_set.depth.clearance_factor`` k_c, c = k_c h_mw: this member's dedendum grows by the added clearance, the
 mate's tip contact with it, while the junction stays where it is above the deeper root); a larger addendum of the
 member with the high fillet (profile shift: ``gear_set.depth.mean_addendum_factor`` c_ham, lower for the pinion,
-higher for the gear), which moves the mate's tip contact up its flank and makes its trochoidal fillet smaller; a larger pressure angle (``gear_set.normal_pressure_angle`` /
-``coast_pressure_angle``); a smaller edge radius (``face_milling.edge_radius`` or the flank's
-``face_milling.<member>_<side>.cutter.edge_radius``), which can lower the junction by at most rho (1 - sin alpha).
+higher for the gear), which moves the mate's tip contact up its flank and makes its trochoidal fillet smaller; a
+larger pressure angle (``gear_set.normal_pressure_angle`` / ``coast_pressure_angle``); a smaller edge radius
+(``face_milling.edge_radius`` or the flank's ``face_milling.<member>_<side>.cutter.edge_radius``), which can lower
+the junction by at most rho (1 - sin alpha).
 """
 
 from __future__ import annotations
@@ -61,8 +63,9 @@ __all__ = ["FilletTop", "mate_top_height", "active_start_height", "fillet_top", 
 
 #: face stations (toe to heel, both included) at which the junction is compared with the mate's tip
 FILLET_STATIONS = 7
-#: excess (mm) of the junction over the start of the active flank from which the check fires: the root-cone acceptance of the
-#: design (0.01 mm); the junction height itself is solved to well below that (tests/gearset/test_slot_check.py)
+#: excess (mm) of the junction over the start of the active flank from which the check fires: the root-cone
+#: acceptance of the design (0.01 mm); the junction height itself is solved to well below that
+#: (tests/gearset/test_slot_check.py)
 FILLET_TOP_TOL_MM = 0.01
 #: the failure cause as the warning names it (the robustness bench counts designs by it)
 CAUSE = "fillet above the mate's tip: the mate's tip meets the fillet"
