@@ -126,7 +126,8 @@ def test_fires_where_the_tca_shows_the_fillet_edge_contact(small):
 
     spec, blank, setups = small
     checks = fillet_top_checks(blank, setups)
-    msgs = fillet_top_messages(spec, blank, checks)
+    tca = {name: side_tca(blank, setups, name, n_positions=21)[1] for name in ("drive", "coast")}
+    msgs = fillet_top_messages(spec, blank, checks, tca)
     assert checks[(Member.PINION, Side.CONVEX)].fires
     assert not checks[(Member.PINION, Side.CONCAVE)].fires and (Member.PINION, Side.CONCAVE) not in msgs
     (text,) = msgs[(Member.PINION, Side.CONVEX)]
@@ -137,22 +138,21 @@ def test_fires_where_the_tca_shows_the_fillet_edge_contact(small):
     # the plane-of-axes reach is the conservative bound: it flags every flank the start-of-active-flank one does
     for res in checks.values():
         assert res.reach_excess >= res.excess
-    seen = {}
-    for name in ("drive", "coast"):
-        _, sec, _ = side_tca(blank, setups, name, n_positions=21)
-        seen[name] = any(e["member"] == "pinion" and e["edge"] == "fillet" for e in sec["edge_contacts"])
+    seen = {name: any(e["member"] == "pinion" and e["edge"] == "fillet" for e in tca[name]["edge_contacts"])
+            for name in ("drive", "coast")}
     assert seen == {"coast": True, "drive": False}
 
 
-def _pinion_fillet_contact(blank, setups):
-    """{side: whether the 21-position TCA of that side has an edge contact at the pinion's fillet}."""
+def _tca(blank, setups):
     from spiralbevel.gearset.tca import side_tca
 
-    out = {}
-    for name in ("drive", "coast"):
-        _, sec, _ = side_tca(blank, setups, name, n_positions=21)
-        out[name] = any(e["member"] == "pinion" and "fillet" in e["edge"] for e in sec["edge_contacts"])
-    return out
+    return {name: side_tca(blank, setups, name, n_positions=21)[1] for name in ("drive", "coast")}
+
+
+def _pinion_fillet_contact(tca):
+    """{side: whether the 21-position TCA of that side has an edge contact at the pinion's fillet}."""
+    return {name: any(e["member"] == "pinion" and "fillet" in e["edge"] for e in sec["edge_contacts"])
+            for name, sec in tca.items()}
 
 
 def test_does_not_fire_on_the_iso_sample():
@@ -163,8 +163,9 @@ def test_does_not_fire_on_the_iso_sample():
     assert len(checks) == 4
     for res in checks.values():
         assert not isinstance(res, Exception) and not res.fires, res
-    assert fillet_top_messages(gs.design, gs.blank, checks) == {}
-    assert _pinion_fillet_contact(gs.blank, gs.setups) == {"drive": False, "coast": False}
+    tca = _tca(gs.blank, gs.setups)
+    assert fillet_top_messages(gs.design, gs.blank, checks, tca) == {}
+    assert _pinion_fillet_contact(tca) == {"drive": False, "coast": False}
 
 
 def test_fires_on_the_synthesized_seed_example():
@@ -173,20 +174,31 @@ def test_fires_on_the_synthesized_seed_example():
     fillet edge contact; the gear's junctions stay below the pinion's tip contact."""
     gs = sb.GearSet.from_design("aviation_23x65_synthesized")
     checks = fillet_top_checks(gs.blank, gs.setups)
-    assert {k for k, r in checks.items() if r.fires} == {(Member.PINION, Side.CONVEX), (Member.PINION, Side.CONCAVE)}
-    assert _pinion_fillet_contact(gs.blank, gs.setups) == {"drive": True, "coast": True}
+    pinion = {(Member.PINION, Side.CONVEX), (Member.PINION, Side.CONCAVE)}
+    assert {k for k, r in checks.items() if r.fires} == pinion
+    tca = _tca(gs.blank, gs.setups)
+    assert _pinion_fillet_contact(tca) == {"drive": True, "coast": True}
+    assert set(fillet_top_messages(gs.design, gs.blank, checks, tca)) == pinion
 
 
-def test_report_section_and_design_warning():
-    """``GearSet.machine_summary`` (as the job's flank report) carries each flank's ``fillet_top`` section and issues
-    the flagged flanks' warnings as ``DesignWarning`` naming the cause, also listed in the flank's ``checks``."""
+def test_report_section_and_design_warning(small):
+    """The job's report step (``fillet_top_report``, after the TCA): each flank's ``fillet_top`` section; a
+    ``DesignWarning`` naming the cause, also in the flank's ``checks``, only where the estimate fires and the TCA
+    shows the edge contact it explains (11/17: the pinion's convex flank; its gear concave flank, also estimated
+    above the pinion's tip contact, +0.33 mm, has no such edge contact in the TCA and is not reported)."""
     from spiralbevel.errors import DesignWarning
+    from spiralbevel.gearset.fillet_top import fillet_top_report
 
-    gs = sb.GearSet.from_design("aviation_23x65_synthesized")
-    with pytest.warns(DesignWarning, match="pinion convex: fillet above the mate's tip"):
-        flanks = gs.machine_summary().to_dict()["flanks"]
+    spec, blank, setups = small
+    tca = _tca(blank, setups)
+    flanks = {}
+    with pytest.warns(DesignWarning, match="pinion convex: fillet above the mate's tip") as rec:
+        fillet_top_report(spec, blank, setups, flanks, tca)
+    assert sum(CAUSE in str(w.message) for w in rec) == 1
     for m in ("pinion", "gear"):
         for s in ("convex", "concave"):
             sec = flanks[m][s]["fillet_top"]
-            assert sec["fires"] == (m == "pinion") and len(sec["junction_mm"]) == 7
-            assert sec["fires"] == any(t.startswith(CAUSE) for t in flanks[m][s].get("checks", []))
+            assert len(sec["junction_mm"]) == 7
+            assert sec["reported"] == ((m, s) == ("pinion", "convex"))
+            assert sec["reported"] == any(t.startswith(CAUSE) for t in flanks[m][s].get("checks", []))
+    assert flanks["gear"]["concave"]["fillet_top"]["fires"]

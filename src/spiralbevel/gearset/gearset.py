@@ -208,9 +208,6 @@ class GearSet:
             from .slot_check import slot_report
 
             slot_report(self.design, self.blank, self.setups, flanks)   # each cutter's opposite blade (as the job)
-            from .fillet_top import fillet_top_report
-
-            fillet_top_report(self.design, self.blank, self.setups, flanks)   # each fillet against the mate's tip
         return MachineSummary(flanks, machines)
 
     def tca(self, side: str = "drive", misalignment=None, positions: int | None = None):

@@ -26,9 +26,6 @@ def run_facemilled(gs, out, steps, report, summary):
         from .slot_check import slot_report
 
         slot_report(spec, blank, setups, flanks)      # each cutter's opposite blade against the opposite flank
-        from .fillet_top import fillet_top_report
-
-        fillet_top_report(spec, blank, setups, flanks)   # each fillet against the mate's tip
         report["flanks"] = flanks
         report["machine_settings"] = machines
     with steps.step("tooth assembly"):
@@ -48,6 +45,9 @@ def run_facemilled(gs, out, steps, report, summary):
             mark_failed(summary.partial, report["tca"][name], f"TCA, {name} side")
             _tca_checks(report, name, tca_results.get(name), synth, blank.z1)
             iso_contact_ratio(report["tca"][name], blank, name)
+        from .fillet_top import fillet_top_report
+
+        fillet_top_report(spec, blank, setups, report["flanks"], report["tca"])   # each fillet against the mate's tip
         sens, failed = attempt(summary.partial, "misalignment sensitivity", misalignment_sensitivity, blank, setups,
                                "drive", n_positions=n_pos)
         report["tca"]["misalignment_sensitivity"] = failed or sens
