@@ -202,3 +202,16 @@ def test_report_section_and_design_warning(small):
             assert sec["reported"] == ((m, s) == ("pinion", "convex"))
             assert sec["reported"] == any(t.startswith(CAUSE) for t in flanks[m][s].get("checks", []))
     assert flanks["gear"]["concave"]["fillet_top"]["fires"]
+
+
+def test_a_junction_that_cannot_be_located_is_an_error_not_a_nan(small, monkeypatch):
+    """A junction solve that returns NaN at a station makes the check 'not computed' (an error the report names),
+    never a NaN in the report."""
+    import spiralbevel.gearset.fillet_top as ft
+
+    blank, setups = small[1], small[2]
+    real = ft.junction_height
+    monkeypatch.setattr(ft, "junction_height", lambda flank, n: np.where(np.arange(n) == 2, np.nan, real(flank, n)))
+    checks = fillet_top_checks(blank, setups)
+    assert checks and all(isinstance(v, sb.errors.GeometryError) for v in checks.values())
+    assert "could not be located" in str(next(iter(checks.values())))

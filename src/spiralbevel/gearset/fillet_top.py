@@ -206,9 +206,14 @@ def fillet_top(blank, setup, member: Member, n_face: int = FILLET_STATIONS) -> F
     ol = flank.outline
     R = np.linspace(ol.Ri, ol.Re, n_face)
     mp = flank.mean_point()
-    return FilletTop(junction_height(flank, n_face), mate_top_height(blank, member, R),
-                     active_start_height(blank, member, R, abs(mp.pressure_angle), abs(mp.spiral_angle)), R,
-                     float(setup.cutter.edge_radius), float(setup.cutter.blade_angle))
+    res = FilletTop(junction_height(flank, n_face), mate_top_height(blank, member, R),
+                    active_start_height(blank, member, R, abs(mp.pressure_angle), abs(mp.spiral_angle)), R,
+                    float(setup.cutter.edge_radius), float(setup.cutter.blade_angle))
+    if not (np.all(np.isfinite(res.junction)) and np.all(np.isfinite(res.start)) and np.all(np.isfinite(res.top))):
+        # a report never carries a NaN: the check says it could not be computed instead (fillet_top_checks)
+        raise GeometryError(f"{member.value} {flank.side.value}: the fillet/blade junction or the mate's tip contact "
+                            "could not be located at every face station")
+    return res
 
 
 def fillet_top_checks(blank, setups) -> dict:
