@@ -62,6 +62,7 @@ import numpy as np
 from ..conventions import Member, Side
 from ..errors import DesignError, GeometryError
 from .pinion_fillet import junction_height
+from .slot_check import cutter_key
 
 __all__ = ["FilletTop", "mate_top_height", "active_start_height", "fillet_top", "fillet_top_checks",
            "fillet_edge_contact", "fillet_top_messages", "fillet_top_report", "FILLET_STATIONS", "FILLET_TOP_TOL_MM",
@@ -227,13 +228,6 @@ def fillet_top_checks(blank, setups) -> dict:
     return out
 
 
-def _edge_radius_key(spec, member, side) -> str:
-    key = f"face_milling.{member.value}_{side.value}"
-    if getattr(spec.face_milling, f"{member.value}_{side.value}").cutter is not None:
-        return f"{key}.cutter.edge_radius"
-    return "face_milling.edge_radius"
-
-
 def fillet_top_message(spec, blank, member: Member, side: Side, res: FilletTop) -> str:
     """The warning of one flank whose fillet reaches above the mate's tip contact: the cause, the depth, where, and the
     design-file keys to change with the direction (module docstring)."""
@@ -248,7 +242,7 @@ def fillet_top_message(spec, blank, member: Member, side: Side, res: FilletTop) 
     else:
         shift = (f"raise gear_set.depth.mean_addendum_factor from {c_ham:.3f} (a larger gear addendum, profile "
                  f"shift x_hm1 down from {float(blank.x_hm1):.3f}: a shallower gear dedendum and trochoidal fillet)")
-    rho = (f"a smaller edge radius ({_edge_radius_key(spec, member, side)}; the {res.edge_radius:.3f} mm edge "
+    rho = (f"a smaller edge radius ({cutter_key(spec, member, side, 'edge_radius')}; the {res.edge_radius:.3f} mm edge "
            f"radius lifts the junction by at most rho (1 - sin alpha) = {res.edge_part:.3f} mm"
            + (", not enough alone)" if res.edge_part < res.excess else ")"))
     pa = "gear_set.normal_pressure_angle / gear_set.coast_pressure_angle"
