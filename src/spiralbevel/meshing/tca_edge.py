@@ -96,7 +96,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     corner's point past the end of its own boundary: that flank's vertex) and labelled ("pinion/gear",
     "heel/top corner") or, for a vertex, ("pinion", "heel/fillet corner").
     """
-    from .contact_surface import surface_contains
+    from .contact_surface import surface_contains, surface_on_sheet
 
     n, P = status.shape
     T1 = 2 * np.pi / prob.z1
@@ -137,7 +137,10 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         # whether the solution is a contact (converged, opposed normals, |TE| below half a gear pitch); then the
         # solutions that lead their pair's best contact so far: compiled (spiralbevel._core.tca_edge_screen)
         k = len(ii)
-        conv = np.ascontiguousarray(conv, bool)
+        # a solution whose point (held on a boundary or not) lies on a part of a flank cut away past a limit line of
+        # generation (the surfaces' ``on_sheet``) is no contact of the real teeth
+        conv = np.ascontiguousarray(conv & surface_on_sheet(surfs[0], xs[:, 0:2])
+                                    & surface_on_sheet(surfs[1], xs[:, 2:4]), bool)
         C = [np.zeros(k, bool), np.zeros(k, bool)]
         ic = np.flatnonzero(conv)
         if ic.size:
