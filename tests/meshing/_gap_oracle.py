@@ -280,3 +280,22 @@ class GapOracle:
         j = int(np.argmax(best))
         phi2 = -drive * best[j]
         return (phi2, c[j], zr[order[0]]) if report else phi2
+
+
+def tca_deviation(c1, c2, kin, res, idx, misalignment=None, n=(90, 45), k=6, starts=4, levels=10):
+    """TCA's lead minus the oracle's first touch over every tooth pair of ``res`` (arcsec) at positions ``idx``
+    (lead = -drive phi2; pair k: pinion rotation phi1 + 2 pi k / z1, gear rotation + 2 pi k / z2)."""
+    from spiralbevel.meshing.misalignment import Misalignment
+    from spiralbevel.meshing.tca_result import ARCSEC
+
+    mis = Misalignment() if misalignment is None else misalignment
+    o = GapOracle(c1, c2, flank_box(c1), flank_box(c2), mis.axes(kin.shaft_angle), n=n, k=k)
+    out = []
+    for i in idx:
+        leads = []
+        for kk in res.pairs:
+            pe = res.phi1[i] + 2 * np.pi * kk / kin.z1
+            p2 = o.first_touch(pe, res.drive_sign, -kin.z1 / kin.z2 * pe, starts=starts, levels=levels)
+            leads.append(-res.drive_sign * (p2 + 2 * np.pi * kk / kin.z2))
+        out.append((-res.drive_sign * res.phi2[i] - np.nanmax(leads)) / ARCSEC)
+    return np.array(out)

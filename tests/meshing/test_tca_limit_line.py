@@ -16,11 +16,10 @@ import numpy as np
 import pytest
 
 from _blade_sweep import penetration
-from _gap_oracle import GapOracle, flank_box
+from _gap_oracle import flank_box, tca_deviation
 from _interference_pair import coast_pair as interference_pair
 from _limit_line_pair import coast_pair
 
-from spiralbevel.meshing.misalignment import Misalignment
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC
 
@@ -36,17 +35,7 @@ def pair():
 
 
 def _oracle_deviation(c1, c2, kin, res, idx):
-    """TCA lead minus the oracle's first touch over every tooth pair (arcsec) at positions idx; lead = -drive phi2."""
-    o = GapOracle(c1, c2, flank_box(c1), flank_box(c2), Misalignment().axes(kin.shaft_angle), n=(90, 45), k=6)
-    out = []
-    for i in idx:
-        leads = []
-        for k in res.pairs:
-            pe = res.phi1[i] + 2 * np.pi * k / kin.z1
-            p2 = o.first_touch(pe, res.drive_sign, -kin.z1 / kin.z2 * pe, starts=4, levels=10)
-            leads.append(-res.drive_sign * (p2 + 2 * np.pi * k / kin.z2))
-        out.append((-res.drive_sign * res.phi2[i] - np.nanmax(leads)) / ARCSEC)
-    return np.array(out)
+    return tca_deviation(c1, c2, kin, res, idx, n=(90, 45), k=6, starts=4, levels=10)
 
 
 def test_points_past_the_limit_line_are_cut_away(pair):
