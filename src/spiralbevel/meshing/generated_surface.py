@@ -178,10 +178,24 @@ class GeneratedSurface:
         at the cradle angles that generate that sheet, i.e. cut away (tests/meshing/test_tca_limit_line.py shows it
         by sweeping the blade). Such points are no part of the real flank."""
         params = np.asarray(params, float)
-        S, _, _ = self._jet(np.concatenate([params.reshape(-1, 2), self.reference_params[None]]))
+        S, _, _ = self._jet(params.reshape(-1, 2))
         with np.errstate(invalid="ignore"):
-            d = np.einsum("ki,ki->k", np.cross(S[:, :, 2], S[:, :, 3]), S[:, :, 1])
-            return (d[:-1] * d[-1] > 0).reshape(params.shape[:-1])
+            return (_orientation(S) * self._sheet_sign() > 0).reshape(params.shape[:-1])
+
+    def _sheet_sign(self):
+        """sign((r_phi x r_psi) . n) at the mean point, kept with the jet parameters it was computed for."""
+        prm = self._prm()
+        if getattr(self, "_sheet_src", None) is not prm or prm is None:
+            self._sheet = float(np.sign(_orientation(self._jet(self.reference_params[None])[0])[0]))
+            self._sheet_src = prm
+        return self._sheet
+
+
+def _orientation(S):
+    """(r_phi x r_psi) . n (k,) of stacked jets S (k, 3, 6) (columns r, n, r_phi, r_psi, ...)."""
+    a, b, n = S[:, :, 2], S[:, :, 3], S[:, :, 1]
+    return ((a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]) * n[:, 0] + (a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]) * n[:, 1]
+            + (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) * n[:, 2])
 
 
 class GeneratedSurfaceUPsi:
