@@ -394,6 +394,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
     """
     from .pinion_fillet import fit_pinion_edge_radius, lower_root
     from .refit_bearing import off_after_refit
+    from .root_cone import raise_root
     from .slot_open import slot_closed
 
     slot_other, floors = slot
@@ -419,6 +420,8 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
             pinion_settings_hint=pin.settings if hint else None)
         if default:
             _require_near_branch(res, pin)
+        if floors is not None and floors[s1] < 1.0:   # a derived point width: the root on the root cone
+            res = raise_root(blank, res)              # (gearset/root_cone.py), the blade unchanged
         return res
 
     def judge(res, frac, free, eta=None):
