@@ -20,8 +20,8 @@ clearance to the mate's tip larger than asked) and the check warns, naming the d
 
 **Where a synthesized root lands.** The local synthesis fits the pinion's cutter and machine settings to the gear at
 the mean contact point; the tip plane goes where those settings put it. On ``bench_robustness.py 40 1`` the
-synthesized pinion's root lay 0.12-14.2 mm below the root cone on 7 of the first 19 designs (all on the concave,
-drive, side; 33/147 at beta 4.4 deg: 14.2 mm, with a whole depth of 14 mm), which no check counted.
+synthesized pinion's root lay 0.12-14.2 mm below the root cone on 15 of the 40 designs (on the concave,
+drive, side; 10/54 on both; 33/147 at beta 4.4 deg: 14.2 mm), which no check counted.
 :func:`raise_root` puts it back on the root cone without changing the blade surface, the mirror of
 :func:`~spiralbevel.gearset.pinion_fillet.lower_root`: the blade's tip is cut back by Delta (the root's depth below
 the root cone, at its lowest station) along the cradle axis and the work moved by Delta away from the cutter
