@@ -333,6 +333,9 @@ def _synthesize_sides(sy, blank, setups, syn, refit=None, floors=None):
         if res.pinion_cutter.point_width < pin.cutter.point_width - 1e-9:   # gearset/pinion_fillet.lower_root
             source += (f"; root lowered onto the root cone: blade extended to a point width of "
                        f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
+        if res.pinion_cutter.point_width > pin.cutter.point_width + 1e-9:   # gearset/root_cone.raise_root
+            source += (f"; root raised onto the root cone: blade tip cut back to a point width of "
+                       f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
         if res.pinion_cutter.edge_radius < pin.cutter.edge_radius:
             source += (f"; edge radius {res.pinion_cutter.edge_radius:.3f} mm refitted to keep the generated fillet "
                        f"below the gear's top (derived {pin.cutter.edge_radius:.3f} mm)")
