@@ -71,8 +71,9 @@ __all__ = ["kernel"]
 _log = logging.getLogger(__name__)
 
 #: options of every compiled kernel: no Python objects, IEEE semantics (no fastmath: roots must match the reference
-#: arithmetic), errors as NaN instead of exceptions inside the loops
-_OPTIONS = dict(fastmath=False, error_model="numpy", nogil=True)
+#: arithmetic), errors as NaN instead of exceptions inside the loops; no cfunc wrapper (the C-callable entry point
+#: numba builds for passing a compiled function as a first-class value, which no kernel does: see ``_core/jets.py``)
+_OPTIONS = dict(fastmath=False, error_model="numpy", nogil=True, no_cfunc_wrapper=True)
 
 
 def sources_key(paths) -> str:
