@@ -84,7 +84,7 @@ def _pinion_jet(prm, phi, psi, cst, rate, out):
     return blade_jet_point(prm, phi, psi, out)
 
 
-@kernel(inline="always")   # one call site (in _newton): inlined there
+@kernel
 def _system(prm1, prm2, z, x, target, rate, is_mean, c, F, J, uu, S1, S2, Sp, Sm, G):
     """F (6,) and J (6, 6) of one system at z (6,); u1, u2 into ``uu (2,)``. ``c`` holds the constants
     (phi1_mean, shaft angle, ratio z1/z2, drive sign, phi2_ref, L, E_m10, t_a (3), t_b (3), o1 (3), o2 (3))."""
