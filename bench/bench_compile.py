@@ -9,9 +9,15 @@ Runs ``spiralbevel run aviation_23x65_cmc`` once in this interpreter with a new,
   the CPU time of its own compiles (without the nested compiles of its callees), with them, and the number of
   specialisations; a function compiled more than once is listed with its signatures (``--signatures``).
 
+* with ``--ir``: the LLVM IR that LLVM optimised and emitted: the instructions of every compiled function's module
+  together with the callees it links (numba links the IR of every kernel a function calls into its module and
+  optimises and emits it again there), against the distinct functions among them. A count, not a time: it does not
+  move with the machine load, so it compares two versions of the kernels on a busy machine (the counting itself adds
+  a few seconds of CPU to the run).
+
 There is no alternative to compare against: the figures locate the compile cost (``_core/jit.py`` lists the rules it
 led to). One run (a cold run is not repeatable in one process); CPU time is ``time.process_time``, the machine load is
-printed. Run: ``python bench/bench_compile.py [--top N] [--signatures]``.
+printed. Run: ``python bench/bench_compile.py [--top N] [--signatures] [--ir]``.
 """
 
 from __future__ import annotations
@@ -66,17 +72,41 @@ class _Timer(event.Listener):
             self.t += time.process_time() - self.t0
 
 
+class _LinkedIR:
+    """Instructions of the LLVM modules numba optimises (each with the callees it links), by function name."""
+
+    def __init__(self):
+        from numba.core import codegen
+
+        self.modules, self.size = 0, {}
+        self.total = 0
+        optimize = codegen.CPUCodeLibrary._optimize_final_module
+
+        def counted(library):
+            self.modules += 1
+            for fn in library._final_module.functions:
+                if not fn.is_declaration:
+                    n = sum(1 for b in fn.blocks for _ in b.instructions)
+                    self.total += n
+                    self.size[fn.name] = max(n, self.size.get(fn.name, 0))
+            return optimize(library)
+
+        codegen.CPUCodeLibrary._optimize_final_module = counted
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--top", type=int, default=30, help="functions listed (by own compile time)")
     ap.add_argument("--signatures", action="store_true", help="print the signatures of functions compiled twice")
     ap.add_argument("--example", default="aviation_23x65_cmc")
+    ap.add_argument("--ir", action="store_true", help="count the LLVM IR instructions optimised (see above)")
     a = ap.parse_args()
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     compiles, llvm, compile_all = _Compiles(), _Timer(), _Timer()
     event.register("numba:compile", compiles)
     event.register("numba:compile", compile_all)
     event.register("numba:llvm_lock", llvm)
+    ir = _LinkedIR() if a.ir else None
     from spiralbevel.cli import app
 
     load = os.getloadavg()[0]
@@ -89,6 +119,9 @@ def main():
     print(f"{a.example}, cold (empty cache), in-process: CPU {cpu:.1f} s, wall {wall:.1f} s; numba compiles "
           f"{compile_all.t:.1f} s CPU, of which LLVM {llvm.t:.1f} s; {sum(len(v) for v in compiles.sigs.values())} "
           f"compiles of {len(compiles.sigs)} functions", file=sys.stderr)
+    if ir is not None:
+        print(f"LLVM IR optimised: {ir.total} instructions in {ir.modules} modules, {sum(ir.size.values())} in "
+              f"distinct functions", file=sys.stderr)
     print(f"{'own s':>7} {'with callees s':>14} {'n':>3}  function", file=sys.stderr)
     for name, own in sorted(compiles.own.items(), key=lambda kv: -kv[1])[:a.top]:
         n = len(compiles.sigs[name])

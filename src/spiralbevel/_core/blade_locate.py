@@ -21,13 +21,13 @@ import math
 
 import numpy as np
 
-from .generation_blade_jet import _E, _Q, _S, blade_jet_du, blade_jet_point
+from .generation_blade_jet import _E, _Q, _S, blade_jet_point, blade_jet_u
 from .jit import kernel
 
 __all__ = ["axial_radius", "locate_axial_radius", "locate_R_u", "locate_rows", "on_branch"]
 
 
-@kernel
+@kernel(inline="always")
 def _residual(prm, phi, psi, axial, radius, S, F, J):
     """F (2,), J (2, 2) at (phi, psi); returns u (mm)."""
     u = blade_jet_point(prm, phi, psi, S)
@@ -41,7 +41,7 @@ def _residual(prm, phi, psi, axial, radius, S, F, J):
     return u
 
 
-@kernel
+@kernel(inline="always")
 def _step(J, F, p, q, max_step):
     """(p, q) + the capped Newton step -J^-1 F of a 2 x 2 system (non-finite components 0)."""
     det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
@@ -55,7 +55,7 @@ def _step(J, F, p, q, max_step):
     return p + d0 / scale, q + d1 / scale
 
 
-@kernel
+@kernel(inline="always")
 def _max2(F):
     """max(|F_0|, |F_1|), NaN if either is NaN (as numpy's max)."""
     a0, a1 = abs(F[0]), abs(F[1])
@@ -88,18 +88,17 @@ def locate_axial_radius(prm, x0, axial, radius, tol, max_iter, max_step):
 def _newton_axial_radius(prm, p, q, axial, radius, tol, max_iter, max_step, S, F, J):
     """Newton of :func:`locate_axial_radius` for one target from (p, q) = (phi, psi_c): returns phi, psi_c, u and the
     residual max-norm."""
-    uk = _residual(prm, p, q, axial, radius, S, F, J)
-    r = _max2(F)
     it = 0
-    while not r < tol and it < max_iter:
-        it += 1
-        p, q = _step(J, F, p, q, max_step)
+    while True:   # one call site of each inlined helper
         uk = _residual(prm, p, q, axial, radius, S, F, J)
         r = _max2(F)
-    return p, q, uk, r
+        if r < tol or not it < max_iter:
+            return p, q, uk, r
+        it += 1
+        p, q = _step(J, F, p, q, max_step)
 
 
-@kernel
+@kernel(inline="always")
 def _reference_angle(prm, Rc, psi):
     """Absolute cutter angle toward the contact zone at cradle angle psi_c (``generation.reference_angle``)."""
     S, q, E = prm[_S], prm[_Q], prm[_E]
@@ -111,7 +110,7 @@ def _reference_angle(prm, Rc, psi):
     return psi - 0.5 * math.pi
 
 
-@kernel
+@kernel(inline="always")
 def _in_window(prm, Rc, phi_span, p, q):
     """True where the cutter angle p lies within phi_span (rad) of the reference angle at cradle angle q."""
     d = p - _reference_angle(prm, Rc, q)
@@ -167,10 +166,10 @@ def locate_rows(prm, x0, axial, radius, tol, max_iter, max_step, Rc, phi_span, u
     return x, u, m
 
 
-@kernel
+@kernel(inline="always")
 def _residual_R_u(prm, phi, psi, R, ut, sd, cd, S, F, J):
     """F (2,), J (2, 2) of the (R, u) system at (phi, psi); returns u (mm)."""
-    u, u_phi, u_psi = blade_jet_du(prm, phi, psi, S)
+    u, u_phi, u_psi = blade_jet_u(prm, phi, psi, S)
     x, y, z = S[0, 0], S[1, 0], S[2, 0]
     rad = math.sqrt(x * x + y * y)
     F[0] = rad * sd + z * cd - R
@@ -195,14 +194,14 @@ def locate_R_u(prm, x0, R, ut, sd, cd, tol, max_iter, max_step):
     J = np.empty((2, 2))
     for k in range(m):
         p, q = x[k, 0], x[k, 1]
-        uk = _residual_R_u(prm, p, q, R[k], ut[k], sd, cd, S, F, J)
-        r = _max2(F)
         it = 0
-        while not r < tol and it < max_iter:
-            it += 1
-            p, q = _step(J, F, p, q, max_step)
+        while True:   # one call site of each inlined helper
             uk = _residual_R_u(prm, p, q, R[k], ut[k], sd, cd, S, F, J)
             r = _max2(F)
+            if r < tol or not it < max_iter:
+                break
+            it += 1
+            p, q = _step(J, F, p, q, max_step)
         x[k, 0], x[k, 1], u[k] = p, q, uk
         conv[k] = r < tol
         res[k] = r

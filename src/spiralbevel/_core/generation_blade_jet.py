@@ -26,7 +26,7 @@ import numpy as np
 
 from .jit import kernel
 
-__all__ = ["parameters", "blade_jet_u", "blade_jet_du", "blade_jet_point", "jet_batch"]
+__all__ = ["parameters", "blade_jet_u", "blade_jet_point", "jet_batch"]
 
 # layout of prm: fixed head, then the variable-length roll, polynomial and table coefficients
 _S_BLADE, _RH, _CHI0, _RP, _RC, _ZC, _UP, _UJ = 0, 1, 2, 3, 4, 5, 6, 7
@@ -164,7 +164,7 @@ def _meshing(prm, u, c, sn, sb, cb, S, SOz, Ox, wx, wy, wz):
     return rho, z, dchi, nr, nc, nz, h, P, Q, P * c + Q * sn + R, P_u * c + Q_u * sn + R_u
 
 
-@kernel   # not inlined: three kernels call it (compile-time rule of _core/jit.py)
+@kernel   # not inlined: the one compiled copy of the jet that every caller links (_core/jit.py)
 def blade_jet_u(prm, phi, psi, out):
     """Jet at one point (phi, psi_c) rad into ``out (3, 6)`` (see module); returns the blade parameter u (mm) and its
     derivatives (u_phi, u_psi) (mm/rad; NaN where the chart is singular): the fillet junction u = u_j is a flank
@@ -190,7 +190,9 @@ def blade_jet_u(prm, phi, psi, out):
         if not abs(du) > tol:
             break
     if not math.isfinite(u):
-        out[:, :] = math.nan
+        for i in range(3):   # loops: a slice set-item compiles numba's broadcasting code into every caller
+            for j in range(6):
+                out[i, j] = math.nan
         return u, math.nan, math.nan
     rho, z, dchi, nr, nc, nz, h, P, Q, _, f_u = _meshing(prm, u, c, sn, sb, cb, S, SOz, Ox, wx, wy, wz)
     tt = dw * E + w * dE
@@ -243,17 +245,10 @@ def blade_jet_u(prm, phi, psi, out):
     return u, u_phi, u_psi
 
 
-@kernel
-def blade_jet_du(prm, phi, psi, out):
-    """:func:`blade_jet_u` as a compiled function of its own (not inlined): the callers that need u_phi, u_psi share
-    its machine code with :func:`blade_jet_point` instead of compiling the jet again."""
-    return blade_jet_u(prm, phi, psi, out)
-
-
-@kernel
+@kernel(inline="always")   # one statement: inlined, no compiled function (and no second copy of the jet) of its own
 def blade_jet_point(prm, phi, psi, out):
     """Jet at one point (phi, psi_c) rad into ``out (3, 6)`` (see module); returns the blade parameter u (mm)."""
-    return blade_jet_du(prm, phi, psi, out)[0]
+    return blade_jet_u(prm, phi, psi, out)[0]
 
 
 @kernel

@@ -62,7 +62,7 @@ def _to_member(v0, v1, v2, sg, cg, ci, si, my):
     return ci * xb + si * v1, my * (-si * xb + ci * v1), -v0 * cg + v2 * sg
 
 
-@kernel
+@kernel(inline="always")   # one call site (flank_points): inlined there
 def flank_point(prm, fil, u, phi, psi, curvature, out):
     """Flank point at (u, phi, psi_c) (mm, rad, rad) into ``out (4, 3)``: rows point (mm), outward unit normal, e1, e2
     (NaN unless ``curvature``); returns (k1, k2) in 1/mm (NaN unless ``curvature``)."""
@@ -82,7 +82,9 @@ def flank_point(prm, fil, u, phi, psi, curvature, out):
     out[0, 0], out[0, 1], out[0, 2] = _to_member(r0 + XD * cg, r1 - E, r2 + XB - XD * sg, sg, cg, ci, si, my)
     out[1, 0], out[1, 1], out[1, 2] = _to_member(-ni0, -ni1, -ni2, sg, cg, ci, si, my)
     if not curvature:
-        out[2:, :] = math.nan
+        for i in range(2, 4):   # loops: a slice set-item compiles numba's broadcasting code
+            for j in range(3):
+                out[i, j] = math.nan
         return math.nan, math.nan
     # generating surface: principal curvatures kI (meridian, along t_h), kII (parallel circle, along eII = n x t_h)
     kI, kII = -dchi, -s * sc / rho

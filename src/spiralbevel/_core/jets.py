@@ -30,7 +30,7 @@ LOGSPIRAL = 0
 GENERATED = 1
 
 
-@kernel
+@kernel(inline="always")   # a branch on kind: inlined into its callers, which then link the jets directly
 def surface_jet(kind, prm, q0, q1, out):
     """Jet of surface ``kind`` with parameters ``prm`` at (q0, q1) into ``out (3, 6)``; NaN for an unknown kind."""
     if kind == LOGSPIRAL:
@@ -38,4 +38,6 @@ def surface_jet(kind, prm, q0, q1, out):
     elif kind == GENERATED:
         blade_jet_point(prm, q0, q1, out)
     else:
-        out[:, :] = math.nan
+        for i in range(3):
+            for j in range(6):
+                out[i, j] = math.nan

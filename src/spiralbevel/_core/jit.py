@@ -24,10 +24,19 @@ rules for kernels:
 
 * numba's Python front end (typing, rewrites, lowering to LLVM IR) is half or more of the cost, LLVM the rest,
   roughly in proportion to the number of statements typed: a big kernel costs about 1 s, a small helper 0.1-0.3 s;
-  a kernel called from other kernels is compiled once per signature, not once per caller.
-* ``inline="always"`` re-types (and deep-copies the IR of) the callee in every caller: keep it for small helpers
-  called from one place. The face-milled jet ``blade_jet_u`` inlined into three kernels (and ``_meshing`` twice into
-  it) cost 3-4 s more than compiling it once and calling it; LLVM still inlines small callees at machine level.
+  a kernel called from other kernels is typed once per signature, not once per caller.
+* But LLVM works on it once per compiled function above it: every kernel's module links the IR of every kernel it
+  reaches, and LLVM optimises and emits that module whole, so a kernel's IR is optimised again in each caller, in
+  each caller's callers, up to the top-level kernels called from Python (``bench_compile.py --ir`` counts it). The
+  face-milled jet ``blade_jet_u`` sat below three pass-through kernels (``blade_jet_du``, ``blade_jet_point``,
+  ``surface_jet``) and was optimised in 27 of the 121 modules of the CMC example's cold run. Each level of kernels
+  between a heavy callee and the top costs a full LLVM pass over the callee: a thin wrapper, or a helper with one call
+  site, is ``inline="always"`` (no module of its own); write a Newton loop as ``while True`` with one call of the
+  residual (not one before the loop and one at its end), so that the residual has one call site and can be inlined.
+* ``inline="always"`` re-types (and deep-copies, and re-reads the bytecode of) the callee at every call site: for thin
+  wrappers, small helpers and functions with one call site only. A heavy function called from several places stays a
+  kernel of its own: the face-milled jet ``blade_jet_u`` inlined into three kernels (and ``_meshing`` twice into it)
+  cost 3-4 s more than compiling it once and calling it; LLVM still inlines small callees at machine level.
 * One signature per kernel. Each distinct argument type compiles the whole call tree again: a literal argument
   (``f(x, True)`` from kernel code types as ``Literal[bool](True)``, ``-1`` as ``Literal[int](-1)``), a read-only
   array (``np.broadcast_to`` views, ``setflags(write=False)``) against a writable one, layout ``A`` (a non-contiguous
@@ -40,15 +49,19 @@ rules for kernels:
   ``np.all(np.isfinite(J))`` and above all ``np.linalg`` (``lstsq``: about 2 s). A ``for`` loop over the few
   entries of a kernel's small arrays costs nothing to compile; a rarely taken LAPACK branch can call back into
   Python (``numba.objmode``, see ``settings_fit._lstsq``).
-* Leaving out the CPython and cfunc wrappers of callee-only kernels saved about 3 %: left at numba's default. LLVM
+* No kernel has a cfunc wrapper (``no_cfunc_wrapper``: numba's C-callable entry point for passing a compiled
+  function as a first-class value, which no kernel does; a wrapper is LLVM IR of its own in every module, 8 % of the
+  IR of the CMC example's cold run). CPython wrappers stay on every kernel: a kernel compiled without one and then
+  called from Python jumps to a null entry point (leaving them out of callee-only kernels saved about 3 %). LLVM
   optimisation level 1 instead of numba's 3 (process-wide ``NUMBA_OPT=1``: about 15 % less compile time; for our
   kernels' compiles only, through a pipeline class that sets ``numba.config.OPT`` around them: about 10 % less LLVM
   time, 5 % less compile time) made the face-milled TCA about 10 % slower (three paired runs of
   ``bench/bench_tca.py``); level 0 halves LLVM time and makes TCA and generation 4-5x slower: left at numba's default.
 * Where the cold time goes (the CMC example, empty cache, one process): numba's type inference and lowering are
-  nearly all of the compile; LLVM is about half of it, half optimising and half emitting code. Each top-level kernel's
-  module links the IR of every kernel it calls, so shared callees (the flank jets, ``blade_jet_u``) are optimised and
-  emitted again in every top-level kernel: fewer top-level kernels over the same callees is the lever left. A second
+  nearly all of the compile; LLVM is about 40 % of it, half optimising and half emitting code. After the rule on
+  levels above, what LLVM optimises more than once is mostly the shared callees of the TCA Newton (``tca_newton.step``
+  in 7 modules, its 5 x 5 solve and SVD in 8-9) and the jet below the top-level kernels that each use it: fewer
+  top-level kernels over the same callees is the lever left. A second
   process compiling the kernels into the same cache while the job runs was measured and not kept: on this 2-core
   machine it made the cold run slower in wall time at every load measured (43 -> 58 s at load 1.1).
 * Give each kernel one argument signature: a read-only broadcast view and a writable array are two numba types, and
@@ -71,8 +84,9 @@ __all__ = ["kernel"]
 _log = logging.getLogger(__name__)
 
 #: options of every compiled kernel: no Python objects, IEEE semantics (no fastmath: roots must match the reference
-#: arithmetic), errors as NaN instead of exceptions inside the loops
-_OPTIONS = dict(fastmath=False, error_model="numpy", nogil=True)
+#: arithmetic), errors as NaN instead of exceptions inside the loops; no cfunc wrapper (the C-callable entry point
+#: numba builds for passing a compiled function as a first-class value, which no kernel does: see ``_core/jets.py``)
+_OPTIONS = dict(fastmath=False, error_model="numpy", nogil=True, no_cfunc_wrapper=True)
 
 
 def sources_key(paths) -> str:

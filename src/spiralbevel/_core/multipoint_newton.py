@@ -51,7 +51,7 @@ __all__ = ["solve_systems", "march"]
 _H_OFFSET = 1e-6
 
 
-@kernel
+@kernel(inline="always")
 def _gear_matrix(phi2, S, G):
     """G = R(a2, phi2) R_y(S), a2 = (sin S, 0, cos S), into ``G (3, 3)``."""
     a0, a1, a2 = math.sin(S), 0.0, math.cos(S)
@@ -75,7 +75,7 @@ def _gear_matrix(phi2, S, G):
         G[i, 2] = r0 * sy + r2 * cy
 
 
-@kernel
+@kernel(inline="always")
 def _pinion_jet(prm, phi, psi, cst, rate, out):
     """Pinion jet at (phi, psi_c) with the kernel-sign offset law E(p) = cst - rate p (``rate`` mm/rad in user sign);
     returns u (mm)."""
@@ -166,7 +166,7 @@ def _system(prm1, prm2, z, x, target, rate, is_mean, c, F, J, uu, S1, S2, Sp, Sm
         J[row, 5] = L * (Pf[0, 7] * t0 + Pf[1, 7] * t1 + Pf[2, 7] * t2)
 
 
-@kernel
+@kernel(inline="always")
 def _lu_step(J, F, dx):
     """dx = -J^-1 F (6 x 6, J and F overwritten, ``linalg.lu_solve``); NaN if singular."""
     if lu_solve(J, F, dx):
@@ -177,7 +177,7 @@ def _lu_step(J, F, dx):
             dx[i] = math.nan
 
 
-@kernel
+@kernel(inline="always")
 def _max_abs(F):
     m = 0.0
     for i in range(F.shape[0]):
@@ -194,10 +194,12 @@ def _newton(prm1, prm2, z, x, target, rate, is_mean, c, max_step, tol, max_iter,
     S1, S2, Sp, Sm = np.empty((3, 6)), np.empty((3, 6)), np.empty((3, 6)), np.empty((3, 6))
     G = np.empty((3, 3))
     dx = np.empty(6)
-    _system(prm1, prm2, z, x, target, rate, is_mean, c, F, J, uu, S1, S2, Sp, Sm, G)
-    res = _max_abs(F)
     it = 0
-    while not res < tol and it < max_iter:
+    while True:   # one call site of each inlined helper
+        _system(prm1, prm2, z, x, target, rate, is_mean, c, F, J, uu, S1, S2, Sp, Sm, G)
+        res = _max_abs(F)
+        if res < tol or not it < max_iter:
+            return res < tol, res, it
         it += 1
         _lu_step(J, F, dx)
         scale = 1.0
@@ -207,9 +209,6 @@ def _newton(prm1, prm2, z, x, target, rate, is_mean, c, max_step, tol, max_iter,
             scale = max(scale, abs(dx[i]) / max_step[i])
         for i in range(6):
             z[i] += dx[i] / scale
-        _system(prm1, prm2, z, x, target, rate, is_mean, c, F, J, uu, S1, S2, Sp, Sm, G)
-        res = _max_abs(F)
-    return res < tol, res, it
 
 
 @kernel

@@ -42,14 +42,14 @@ CODES = dict(point_radius=0, blade_angle=1, radial_setting=2, cradle_angle=3, ma
              machine_centre_to_back=5, sliding_base=6, blank_offset=7, ratio_of_roll=8, modified_roll=9)
 
 
-@kernel
+@kernel(inline="always")
 def _fill(a, v):
     """Every entry of ``a (n,)`` set to ``v`` (a loop: ``a[:] = v`` compiles numba's broadcasting set-item)."""
     for i in range(a.size):
         a[i] = v
 
 
-@kernel
+@kernel(inline="always")
 def _max_abs(f):
     """max |f_i| of ``f (n,)``, NaN if any entry is NaN (as ``np.max(np.abs(f))``)."""
     m = 0.0
@@ -174,7 +174,7 @@ def _point_invariants(jet, out):
     return -n0 * h1 + n1 * h0
 
 
-@kernel
+@kernel(inline="always")   # one call site in kernels (residual): inlined there
 def invariants(prm0, cut, codes, x, out):
     """Invariants (7,) of the generated point of the unknowns ``x (7,)`` into ``out``; returns (valid, n_t, u): the
     tangential normal component n_t and the blade parameter u (mm) of the point (NaN where not valid)."""
@@ -205,7 +205,7 @@ def residual(prm0, cut, codes, x, goal, w, f):
         f[i] = (f[i] - goal[i]) * w[i]
 
 
-@kernel
+@kernel(inline="always")   # one call site (newton): inlined there
 def jacobian(prm0, cut, codes, x, goal, w, rel_step, J):
     """Central-difference Jacobian (7, 7) of :func:`residual` at ``x`` into ``J`` (step rel_step max(1, |x_j|))."""
     fp, fm, xp = np.empty(7), np.empty(7), x.copy()
@@ -228,10 +228,12 @@ def newton(prm0, cut, codes, x0, goal, w, max_step, tol, max_iter, rel_step):
     x = x0.copy()
     f = np.empty(7)
     J, A, b, dx = np.empty((7, 7)), np.empty((7, 7)), np.empty(7), np.empty(7)
-    residual(prm0, cut, codes, x, goal, w, f)
-    res = _max_abs(f)
     it = 0
-    while not res < tol and it < max_iter:
+    while True:   # one call site of the inlined _max_abs
+        residual(prm0, cut, codes, x, goal, w, f)
+        res = _max_abs(f)
+        if res < tol or not it < max_iter:
+            return x, res < tol, it, res
         it += 1
         jacobian(prm0, cut, codes, x, goal, w, rel_step, J)
         finite = True
@@ -252,6 +254,3 @@ def newton(prm0, cut, codes, x0, goal, w, max_step, tol, max_iter, rel_step):
             scale = max(scale, abs(dx[j]) / max_step[j])
         for j in range(7):
             x[j] += dx[j] / scale
-        residual(prm0, cut, codes, x, goal, w, f)
-        res = _max_abs(f)
-    return x, res < tol, it, res

@@ -97,7 +97,7 @@ def weingarten_batch(dr, dn, R, rotate, W):
                 W[i, a, b] = RW[a, 0] * R[i, b, 0] + RW[a, 1] * R[i, b, 1] + RW[a, 2] * R[i, b, 2]
 
 
-@kernel
+@kernel(inline="always")   # one call site (relative_curvature_batch): inlined there
 def _relative_curvature(W, n, lam, dirs):
     """Eigenvalues ``lam (2,)`` (ascending) and unit eigenvectors ``dirs (2, 3)`` of the tangent-plane restriction of
     the symmetric ``W (3, 3)`` (= W1 + W2) at the unit normal ``n (3,)`` (module docstring)."""
