@@ -66,6 +66,12 @@ class GeneratedSurface:
         return None if prm is None else (1, prm)
 
     @property
+    def contains_margin_tol(self):
+        """``EDGE_TOL`` where :meth:`contains` is "every compiled margin (``boundary_jet``) >= -EDGE_TOL", which compiled
+        TCA then tests itself; None for a per-system offset law (no compiled margins)."""
+        return None if self._prm() is None else EDGE_TOL
+
+    @property
     def boundary_jet(self):
         """``(kind, prm)`` of the compiled boundary margins with their gradients
         (:func:`spiralbevel._core.tca_edge.margins`, kind ``MARGIN_GENERATED``; the same margins as

@@ -325,7 +325,7 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
             return drive * (-(prob.gear_angle(p2, pairs[j]) - phi2_mean) - ratio * (phi1[i] - phi1_mean))
 
         x_edge, te_edge, labels = edge_stage(prob, x2, sp2, te2, te_of, phi1, pairs, tol=min(tol, 1e-11),
-                                              te_tie=te_tie)
+                                              te_tie=te_tie, te_frame=(drive, phi2_mean, phi1_mean))
     else:
         x_edge, te_edge, labels = np.full((n, P, 5), np.nan), np.full((n, P), np.nan), {}
     has_edge = np.isfinite(te_edge)
