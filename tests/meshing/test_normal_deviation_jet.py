@@ -1,7 +1,7 @@
 """The compiled jet of a crowned flank (``_core.normal_deviation_jet``, kind NORMAL_QUADRATIC of ``_core.jets``) against
 the numpy surface it replaces in TCA (``NormalDeviation.evaluate`` with central differences,
-``surface_derivatives``) on many random points of the log-spiral and the face-milled flanks; and the whole TCA of the
-crowned log-spiral pair with the compiled jet against the same TCA evaluating the crowned flank by numpy."""
+``surface_derivatives``) on many random points of a log-spiral flank; and the whole TCA of the crowned log-spiral pair
+with the compiled jet against the same TCA evaluating the crowned flank by numpy."""
 
 import numpy as np
 import pytest
@@ -11,20 +11,16 @@ from spiralbevel._core.jets import NORMAL_QUADRATIC, surface_jet
 from spiralbevel.meshing.contact_problem import ContactProblem
 from spiralbevel.meshing.contact_surface import NormalDeviation, quadratic_crowning, surface_derivatives
 from spiralbevel.meshing.kinematics import BevelPairKinematics
+from spiralbevel.meshing.synthesis.logspiral_crowning import SumDeviation
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_surfaces import conjugate_logspiral_pair
 
 
-def _bases():
-    pair = conjugate_logspiral_pair()
-    c1, _, _ = seed001_synthesized_pair()
-    return {"logspiral": (pair.pinion, 0.05), "generated": (c1, 0.02)}
-
-
-@pytest.mark.parametrize("name", ["logspiral", "generated"])
-def test_compiled_crowned_jet_matches_numpy(name):
-    base, spread = _bases()[name]
-    surf = NormalDeviation(base, quadratic_crowning(base.reference_params, (0.5, 0.1, 5.0)))
+@pytest.mark.parametrize("sum_of_one", [False, True])
+def test_compiled_crowned_jet_matches_numpy(sum_of_one):
+    base, spread = conjugate_logspiral_pair().pinion, 0.05
+    crown = quadratic_crowning(base.reference_params, (0.5, 0.1, 5.0))
+    surf = NormalDeviation(base, SumDeviation(crown) if sum_of_one else crown)  # the job's crowned flank: a sum
     kind, prm = surf.jet
     assert kind == NORMAL_QUADRATIC
     rng = np.random.default_rng(7)
@@ -48,7 +44,10 @@ def test_a_deviation_that_is_not_a_quadratic_crowning_has_no_compiled_jet():
     base = conjugate_logspiral_pair().pinion
     crown = quadratic_crowning(base.reference_params, (0.5, 0.0, 5.0))
     assert NormalDeviation(base, lambda q: crown(q)).jet is None
+    assert NormalDeviation(base, SumDeviation(crown, crown)).jet is None
     assert NormalDeviation(NormalDeviation(base, crown), crown).jet is None  # a base without a plain compiled jet
+    c1, _, _ = seed001_synthesized_pair()
+    assert NormalDeviation(c1, quadratic_crowning(c1.reference_params, (0.5, 0.0, 5.0))).jet is None  # generated
 
 
 def test_crowned_tca_compiled_equals_numpy(monkeypatch):

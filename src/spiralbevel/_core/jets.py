@@ -9,7 +9,7 @@ Registered kinds:
 * :data:`LOGSPIRAL` (0): the log-spiral flank, :mod:`spiralbevel._core.logspiral_jet`.
 * :data:`GENERATED` (1): the face-milled generated flank in the (phi, psi_c) chart,
   :mod:`spiralbevel._core.generation_blade_jet`.
-* :data:`NORMAL_QUADRATIC` (2): a log-spiral or generated flank crowned along its normal by a quadratic deviation
+* :data:`NORMAL_QUADRATIC` (2): a log-spiral flank crowned along its normal by a quadratic deviation
   (``NormalDeviation`` with ``quadratic_crowning``), :mod:`spiralbevel._core.normal_deviation_jet`.
 
 Adding a kind is a new branch in :func:`surface_jet` and a ``jet`` property on

@@ -6,12 +6,13 @@ The same surface as :class:`spiralbevel.meshing.contact_surface.NormalDeviation`
     w(q) = -(c00 d0^2 + 2 c01 d0 d1 + c11 d1^2),  d = q - centre,  w_q = -2 (c00 d0 + c01 d1, c01 d0 + c11 d1)
     t_i = r_i + w_i n + w n_i  (i = 0, 1),  n' = unit(t_0 x t_1), turned to the side of n
 
-with the first-order jet (r, n, r_q0, r_q1, n_q0, n_q1) of the base flank (a log-spiral or a generated flank of
-:mod:`spiralbevel._core.jets`). The parameter derivatives of r' and n' are central differences of r', n' with the
+with the first-order jet (r, n, r_q0, r_q1, n_q0, n_q1) of the base flank, a log-spiral flank
+(:mod:`spiralbevel._core.logspiral_jet`; the crowned flanks of the package are log-spiral ones: a generated base would
+link the face-milled jet into this kernel too, and every kernel that evaluates flanks compiles this one). The parameter derivatives of r' and n' are central differences of r', n' with the
 steps (h0, h1), as :func:`~spiralbevel.meshing.contact_surface.surface_derivatives` takes them for the numpy surface
 (the derivatives of n' need second derivatives of the base, which its jet does not carry).
 
-``prm`` = (base kind, centre q0, centre q1, c00, c01, c11, h0, h1, then the base jet's parameters); see
+``prm`` = (base kind 0, centre q0, centre q1, c00, c01, c11, h0, h1, then the base jet's parameters); see
 :func:`parameters`. Output ``out (3, 6)``: columns (r', n', r'_q0, r'_q1, n'_q0, n'_q1), member frame.
 """
 
@@ -21,15 +22,13 @@ import math
 
 import numpy as np
 
-from .generation_blade_jet import blade_jet_point
 from .jit import kernel
 from .logspiral_jet import logspiral_jet
 
 __all__ = ["parameters", "normal_quadratic_jet"]
 
-#: base kinds (the values of :mod:`spiralbevel._core.jets`, which imports this module)
+#: the base kind (LOGSPIRAL of :mod:`spiralbevel._core.jets`, which imports this module)
 _LOGSPIRAL = 0
-_GENERATED = 1
 
 
 def parameters(base_kind, base_prm, centre, coeffs, step):
@@ -60,8 +59,6 @@ def normal_quadratic_jet(prm, q0, q1, out):
             b = q1 - h1
         if kind == _LOGSPIRAL:
             logspiral_jet(base, a, b, S)
-        elif kind == _GENERATED:
-            blade_jet_point(base, a, b, S)
         else:
             for i in range(3):
                 for j in range(6):

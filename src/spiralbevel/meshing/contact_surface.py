@@ -140,7 +140,7 @@ class NormalDeviation:
     -----
     r'_i = r_i + w_i n + w n_i; n' = unit(r'_0 x r'_1) oriented like n. The normal needs the base's first
     derivatives; the derivatives of n' for the TCA Jacobian are taken by central differences. With a
-    :func:`quadratic_crowning` of a log-spiral or generated flank the surface has a compiled ``jet`` (the same
+    :func:`quadratic_crowning` of a log-spiral flank the surface has a compiled ``jet`` (the same
     expressions and differences, :mod:`spiralbevel._core.normal_deviation_jet`), so that TCA runs wholly compiled.
     """
 
@@ -159,11 +159,12 @@ class NormalDeviation:
 
     @property
     def jet(self):
-        """``(kind, prm)`` of the compiled jet (:mod:`spiralbevel._core.normal_deviation_jet`) where the base has a
-        compiled jet of a plain flank and the deviation is a :func:`quadratic_crowning`, else None (numpy)."""
+        """``(kind, prm)`` of the compiled jet (:mod:`spiralbevel._core.normal_deviation_jet`) where the base is a
+        log-spiral flank with a compiled jet and the deviation a :func:`quadratic_crowning` (``deviation.quadratic``),
+        else None (numpy)."""
         base = getattr(self.base, "jet", None)
         quad = getattr(self.deviation, "quadratic", None)
-        if base is None or quad is None or int(base[0]) not in (0, 1):  # LOGSPIRAL, GENERATED of _core.jets
+        if base is None or quad is None or int(base[0]) != 0:  # LOGSPIRAL of _core.jets
             return None
         from .._core import normal_deviation_jet as _nd  # numba stays off the import path of the CLI
 

@@ -19,8 +19,8 @@ Algorithm (all numpy, batched):
 
 Speed (bench/bench_tca.py): the Newton iterations are compiled (:mod:`spiralbevel._core.tca_newton`: LU steps where the
 system is provably regular, the minimum-norm SVD step only on a contact line; flanks with a compiled jet, the log-spiral
-and the face-milled generated flank and either crowned by a quadratic normal deviation, are evaluated inside the
-compiled loop), the path tangents come from the Jacobians
+and the face-milled generated flank and the log-spiral flank crowned by a quadratic normal deviation, are evaluated
+inside the compiled loop), the path tangents come from the Jacobians
 of the last Newton iterations, one continuation level (+-T/2) feeds a quintic predictor for the outer positions,
 positions beyond a node the continuation could not reach are not solved, and systems that stop converging are dropped at
 the first iteration that does not halve their residual (continuation nodes after two); the generated flanks give
