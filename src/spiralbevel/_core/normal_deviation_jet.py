@@ -8,8 +8,9 @@ The same surface as :class:`spiralbevel.meshing.contact_surface.NormalDeviation`
 
 with the first-order jet (r, n, r_q0, r_q1, n_q0, n_q1) of the base flank, a log-spiral flank
 (:mod:`spiralbevel._core.logspiral_jet`; the crowned flanks of the package are log-spiral ones: a generated base would
-link the face-milled jet into this kernel too, and every kernel that evaluates flanks compiles this one). The parameter derivatives of r' and n' are central differences of r', n' with the
-steps (h0, h1), as :func:`~spiralbevel.meshing.contact_surface.surface_derivatives` takes them for the numpy surface
+link the face-milled jet into this kernel too, and every kernel that evaluates flanks compiles this one). The parameter
+derivatives of r' and n' are central differences of r', n' with the steps (h0, h1), as
+:func:`~spiralbevel.meshing.contact_surface.surface_derivatives` takes them for the numpy surface
 (the derivatives of n' need second derivatives of the base, which its jet does not carry).
 
 ``prm`` = (base kind 0, centre q0, centre q1, c00, c01, c11, h0, h1, then the base jet's parameters); see

@@ -5,9 +5,9 @@ is a contact at all.
 A system is coded as in :func:`spiralbevel.meshing.tca_edge_solve.corner_split`: member 0 with an edge index
 ``k1 + a K + b`` past the pinion's ``k1`` boundaries is the corner where boundary a meets boundary b (both numbered over
 the pinion's boundaries, then the gear's; ``K = k1 + k2``); any other row is the edge system of boundary ``edge`` of
-``member``. The screen replaces a few dozen numpy calls on arrays of a handful of rows by one compiled loop; :func:`edge_try`
-runs the Newton of the systems, their margins, TE and flank tests and the screen in one call (surfaces with compiled
-jets and margins whose ``contains`` is "every margin >= -tol").
+``member``. The screen replaces a few dozen numpy calls on arrays of a handful of rows by one compiled loop;
+:func:`edge_try` runs the Newton of the systems, their margins, TE and flank tests and the screen in one call (surfaces
+with compiled jets and margins whose ``contains`` is "every margin >= -tol").
 """
 
 from __future__ import annotations
@@ -123,8 +123,8 @@ def accept(ok, te, ii, jj, xs, floor, te_edge, x_edge, last, new, win):
 
 @kernel
 def edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, h, tol, max_iter, rcond, screen_it, tep,
-             phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te, conv, ndot, corner, ma, ea, mb, eb, good, ok,
-             new, win):
+             phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te, conv, ndot, corner, ma, ea, mb, eb, good,
+             ok, new, win):
     """Solve and screen ``m`` edge/corner systems in one compiled call: the Newton of
     :func:`~spiralbevel._core.tca_edge.edge_newton_jets` on ``x (m, 5)`` in place, then (``screen_it`` != 0) all
     margins of both points, the TE, the flank tests and :func:`screen`.

@@ -209,5 +209,5 @@ def quadratic_crowning(center, coeffs):
         g = -2.0 * np.stack([c00 * d[..., 0] + c01 * d[..., 1], c01 * d[..., 0] + c11 * d[..., 1]], -1)
         return w, g
 
-    deviation.quadratic = (c.copy(), (c00, c01, c11))  # type: ignore[attr-defined]  # read by NormalDeviation.jet
+    deviation.quadratic = (c.copy(), (c00, c01, c11))  # read by NormalDeviation.jet
     return deviation

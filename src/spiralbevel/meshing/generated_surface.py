@@ -67,8 +67,8 @@ class GeneratedSurface:
 
     @property
     def contains_margin_tol(self):
-        """``EDGE_TOL`` where :meth:`contains` is "every compiled margin (``boundary_jet``) >= -EDGE_TOL", which compiled
-        TCA then tests itself; None for a per-system offset law (no compiled margins)."""
+        """``EDGE_TOL`` where :meth:`contains` is "every compiled margin (``boundary_jet``) >= -EDGE_TOL", which
+        compiled TCA then tests itself; None for a per-system offset law (no compiled margins)."""
         return None if self._prm() is None else EDGE_TOL
 
     @property

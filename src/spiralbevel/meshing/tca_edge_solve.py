@@ -83,7 +83,7 @@ _NO_SCREEN = None
 def _no_screen():
     global _NO_SCREEN
     if _NO_SCREEN is None:
-        i0, f0, b0 = np.zeros(0, np.int64), np.zeros(0), np.zeros(0, bool)
+        i0, f0 = np.zeros(0, np.int64), np.zeros(0)
         _NO_SCREEN = (np.zeros(6), f0, f0, i0, i0, np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0, 5)),
                       np.zeros((0, 0), np.int64), np.zeros((0, 4)), np.zeros((0, 4)), f0)
     return _NO_SCREEN

@@ -211,8 +211,9 @@ class SumDeviation:
 
     @property
     def quadratic(self):
-        """``(centre, coefficients)`` when the sum is one :func:`~spiralbevel.meshing.contact_surface.quadratic_crowning`
-        (0 + w is w: the same values), else None; read by ``NormalDeviation.jet`` for the compiled crowned flank."""
+        """``(centre, coefficients)`` when the sum is one
+        :func:`~spiralbevel.meshing.contact_surface.quadratic_crowning` (0 + w is w: the same values), else None;
+        read by ``NormalDeviation.jet`` for the compiled crowned flank."""
         return getattr(self.parts[0], "quadratic", None) if len(self.parts) == 1 else None
 
     def __call__(self, params):
