@@ -14,7 +14,14 @@ install; an editable install run with ``PYTHONDONTWRITEBYTECODE`` set would othe
 from source on every run), and one untimed default run and one CMC run fill the warm cache. There is no simpler
 alternative to compare against; the figures are absolute, the median of ``--repeat`` runs (default 3): wall-clock time
 and, since a shared machine stretches the wall clock, the CPU time (user + system) of the job's process and its
-children. Run: ``python bench/bench_job.py [--repeat R] [--only default|cold|fe-cold|warm ...]``.
+children. Each case also prints the 1-minute load average over its runs.
+
+With ``--baseline SRC`` (the ``src`` directory of another checkout, e.g. ``git archive main src | tar -x -C /tmp/b``)
+the default run of that code (put first on ``PYTHONPATH``, its bytecode compiled and its kernels cached in the same
+warm cache beforehand) is alternated run by run with this code's, so that both see the same share of a busy machine;
+it prints both medians and the median of the runs' ratios (baseline / this code).
+
+Run: ``python bench/bench_job.py [--repeat R] [--only default|cold|fe-cold|warm ...] [--baseline SRC]``.
 """
 
 from __future__ import annotations
@@ -33,8 +40,12 @@ from pathlib import Path
 EXE = str(Path(sys.executable).with_name("spiralbevel"))
 
 
+LOADS: list = []   # 1-minute load average at the start of every timed run
+
+
 def timed_run(args, env):
     with tempfile.TemporaryDirectory() as out:
+        LOADS.append(os.getloadavg()[0])
         r0, t0 = resource.getrusage(resource.RUSAGE_CHILDREN), time.perf_counter()
         subprocess.run([EXE, "run", *args, "-o", str(Path(out) / "o")], env=env, check=True, stdout=subprocess.DEVNULL,
                        stderr=subprocess.DEVNULL)
@@ -48,30 +59,57 @@ def median_run(make_args, env, n):
     return statistics.median(w for w, _ in runs), statistics.median(c for _, c in runs)
 
 
+def load_range(first: int) -> str:
+    """The load averages of the runs from index ``first`` on, as "a-b"."""
+    loads = LOADS[first:]
+    return f"{min(loads):.1f}-{max(loads):.1f}"
+
+
+def alternated(args, env, base_env, n):
+    """n pairs of runs, this code and the baseline alternating which goes first: (CPU s of this code's runs, of the
+    baseline's runs), both in run order."""
+    mine, base = [], []
+    for i in range(n):
+        for which in ((0, 1) if i % 2 == 0 else (1, 0)):
+            (mine if which == 0 else base).append(timed_run(args, env if which == 0 else base_env)[1])
+    return mine, base
+
+
 CASES = ("default", "cold", "fe-cold", "warm")
 
 
-def compile_package():
+def compile_package(package_dir=None):
     """Write the bytecode of the installed package (what ``pip install`` does), so that no timed run compiles it."""
-    import spiralbevel
+    if package_dir is None:
+        import spiralbevel
 
-    subprocess.run([sys.executable, "-m", "compileall", "-q", str(Path(spiralbevel.__file__).parent)], check=True,
-                   stdout=subprocess.DEVNULL)
+        package_dir = Path(spiralbevel.__file__).parent
+    subprocess.run([sys.executable, "-m", "compileall", "-q", str(package_dir)], check=True, stdout=subprocess.DEVNULL)
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--only", nargs="*", choices=CASES, default=None, help="cases to time (default: all)")
+    ap.add_argument("--baseline", type=Path, default=None,
+                    help="src directory of other code to alternate the default run with (see the module docstring)")
     a = ap.parse_args()
     n, only = a.repeat, set(a.only or CASES)
     cmc = "aviation_23x65_cmc"
     compile_package()
+    if a.baseline is not None:
+        if not (a.baseline / "spiralbevel" / "__init__.py").is_file():
+            raise SystemExit(f"--baseline {a.baseline}: no spiralbevel package in it")
+        compile_package(a.baseline / "spiralbevel")
     with tempfile.TemporaryDirectory() as root:
         root = Path(root)
         warm = root / "warm"
         env = dict(os.environ, SPIRALBEVEL_CACHE=str(warm), OPENBLAS_NUM_THREADS="1")
+        env.pop("PYTHONPATH", None)
+        base_env = None if a.baseline is None else dict(env, PYTHONPATH=str(a.baseline.resolve()))
         timed_run(["--cache-dir", str(warm)], env)          # compiles the kernels into the warm cache
+        if base_env is not None:
+            timed_run(["--cache-dir", str(warm)], base_env)  # and the baseline's (numba keys them by source file)
         if only - {"default"}:
             timed_run([cmc, "--cache-dir", str(warm)], env)  # and builds the FE compliance there
         kernels = root / "kernels"
@@ -94,9 +132,18 @@ def main():
                 ("warm", "CMC example, warm (FE cache)", lambda: [cmc, "--cache-dir", str(warm)], 5)):
             if case not in only:
                 continue
+            first = len(LOADS)
             w, c = median_run(make, env, n)
             goal = f"   (target <= {target} s)" if target else ""
-            print(f"{label:38s}: wall {w:7.2f} s, CPU {c:7.2f} s{goal}")
+            print(f"{label:38s}: wall {w:7.2f} s, CPU {c:7.2f} s{goal}   load {load_range(first)}")
+        if base_env is not None and "default" in only:
+            first = len(LOADS)
+            mine, base = alternated(["--cache-dir", str(warm)], env, base_env, n)
+            ratios = [b / m for m, b in zip(mine, base)]
+            print(f"default run alternated with --baseline, {n} pairs, load {load_range(first)}: CPU median "
+                  f"{statistics.median(mine):.2f} s ({min(mine):.2f}-{max(mine):.2f}) against "
+                  f"{statistics.median(base):.2f} s ({min(base):.2f}-{max(base):.2f}); median ratio baseline / this "
+                  f"code {statistics.median(ratios):.3f}")
         print(f"machine load {os.getloadavg()[0]:.1f} at the end")
 
 

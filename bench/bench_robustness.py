@@ -9,8 +9,10 @@ developed when every step succeeds and both TCA sides have contact at every posi
 the time per design, and every failure with its error message (a failure must be a clear ``SpiralBevelError``, never a
 traceback or NaN); of the developed ones, how many have all four flanks' mean-point angles within 0.05 deg of the
 design, a bearing inside both flanks (no edge contact) and the TE level of both sides at the design's (the default
-synthesis' 8 arcsec used, not a reduced fallback level, and the TCA's parabolic level within 10 % of it); a design
-*meets every check* when it is developed and passes all three.
+synthesis' 8 arcsec used, not a reduced fallback level, and the TCA's parabolic level within 10 % of it), every
+cutter fitting its tooth space (``gearset.slot_check``) and every generated root, the synthesized pinion's included,
+on or above the blank's root cone (``gearset.root_cone``); a design *meets every check* when it is developed and
+passes all five.
 
 Usage: ``python bench/bench_robustness.py [n_designs] [seed] [part] [parts]`` (default 40 designs, seed 1); with
 ``parts`` > 1 only the designs i with i % parts == part are run (the same sample, split over processes).
@@ -33,6 +35,7 @@ from spiralbevel.job.facemilled import DEFAULT_SYNTHESIS
 from spiralbevel.job.blank import blank_from_design
 from spiralbevel.job.tca import run_pair_tca
 from spiralbevel.gearset.fillet_top import CAUSE as FILLET_CAUSE, fillet_edge_contact, fillet_top_checks
+from spiralbevel.gearset.root_cone import CAUSE as ROOT_CAUSE, root_cone_checks
 from spiralbevel.gearset.slot_check import slot_checks
 from spiralbevel.meshing.tca_checks import parabolic_level
 
@@ -82,7 +85,8 @@ def develop(text, beta):
     fits its tooth space (``gearset.slot_check``), whether a derived point width had to be refitted for that, and the
     flanks whose fillet junction lies above the mate's tip contact and whose TCA side shows the edge contact this
     explains ({"pinion convex": excess mm}, the design check ``gearset.fillet_top``: a blank/cutter design cause of an
-    edge contact that no synthesis removes)."""
+    edge contact that no synthesis removes), and the flanks whose generated root lies below the blank's root cone
+    ({"pinion concave": depth mm}, the design check ``gearset.root_cone``)."""
     spec = parse_design(text)
     blank = blank_from_design(spec)
     setups, synth = fm.setup_flanks(spec, blank, with_synthesis=True)
@@ -106,7 +110,11 @@ def develop(text, beta):
     refit = any("fitted to the tooth space" in st.source for st in setups.values())
     fillet = {f"{m.value} {s.value}": r.excess for (m, s), r in fillet_top_checks(blank, setups).items()
               if not isinstance(r, Exception) and r.fires and fillet_edge_contact(section, m, s)}
-    return None, (dev, edge, levels, slot_ok, refit, fillet)
+    # the design check "root below the root cone" (gearset.root_cone) on all four flanks, the synthesized pinion's
+    # included: {"pinion concave": depth mm} (an uncomputed check counts as a miss, depth NaN)
+    roots = {f"{m.value} {s.value}": (float("nan") if isinstance(r, Exception) else -r.lowest)
+             for (m, s), r in root_cone_checks(setups).items() if isinstance(r, Exception) or r.below}
+    return None, (dev, edge, levels, slot_ok, refit, fillet, roots)
 
 
 def te_level(sec, z1):
@@ -127,8 +135,9 @@ TE_LEVEL_TOL = 0.10
 def failed_checks(checks):
     """The checks a developed pair misses: angles (0.05 deg), bearing (edge contact; with its design cause when a
     fillet junction lies above the mate's tip contact), TE level (design level used, TCA level within 10 %), every
-    cutter fits its tooth space, and the fillet-above-the-mate's-tip design check (``gearset.fillet_top``)."""
-    dev, edge, levels, slot_ok, _, fillet = checks
+    cutter fits its tooth space, the fillet-above-the-mate's-tip design check (``gearset.fillet_top``), and every
+    generated root on or above the blank's root cone (``gearset.root_cone``)."""
+    dev, edge, levels, slot_ok, _, fillet, roots = checks
     out = []
     if dev > 0.05:
         out.append(f"mean-point angles {dev:.3f} deg off")
@@ -142,6 +151,8 @@ def failed_checks(checks):
             out.append(f"{name} TCA TE level {seen:.2f} arcsec")
     if not slot_ok:
         out.append("a cutter does not fit its tooth space")
+    if roots:
+        out.append(f"{ROOT_CAUSE} (" + ", ".join(f"{k} {v:.2f} mm" for k, v in roots.items()) + ")")
     return out
 
 
@@ -149,7 +160,7 @@ def main(n=40, seed=1, part=0, parts=1):
     rng = np.random.default_rng(seed)
     ok, reasons, crashes = 0, collections.Counter(), []
     missed_reasons = collections.Counter()     # the checks developed pairs miss, by cause (figures stripped)
-    n_angles = n_inside = n_level = n_slot = n_refit = n_refit_ok = n_all = 0
+    n_angles = n_inside = n_level = n_slot = n_refit = n_refit_ok = n_all = n_root = 0
     t0, c0 = time.perf_counter(), time.process_time()
     n_run = 0
     for i in range(n):
@@ -173,6 +184,7 @@ def main(n=40, seed=1, part=0, parts=1):
                                            ", TE level " + "/".join(f"{u:g}->{v:.2f}" for u, v in checks[2].values())
                                            + (", cutters fit" if checks[3] else ", a CUTTER DOES NOT FIT the slot")
                                            + (" (point width refitted)" if checks[4] else "")
+                                           + (", a ROOT BELOW THE ROOT CONE" if checks[6] else "")
                                            + (f"; MISSES: {', '.join(missed)}" if missed else "; every check met"))
         print(f"  {'developed' if why is None else 'NOT developed'} ({time.perf_counter() - t1:.1f} s): {label}{extra}",
               flush=True)
@@ -186,6 +198,7 @@ def main(n=40, seed=1, part=0, parts=1):
                 missed_reasons[f"edge contact ({FILLET_CAUSE})" if FILLET_CAUSE in m else
                                re.sub(r"\d[\d.]*", "#", m)] += 1
             n_slot += checks[3]
+            n_root += not checks[6]
             n_refit += checks[4]
             n_refit_ok += checks[4] and checks[3]
         else:
@@ -199,8 +212,9 @@ def main(n=40, seed=1, part=0, parts=1):
           f"inside both flanks (no edge contact in the 21-position TCA of either side): {n_inside}; TE level of both "
           f"sides at the design's {DESIGN_TE_ARCSEC:g} arcsec (synthesized at it, TCA within "
           f"{100 * TE_LEVEL_TOL:.0f} %): {n_level}; every cutter fits its tooth space: {n_slot} (a derived point "
-          f"width refitted in {n_refit}, of which {n_refit_ok} then fit)")
-    print(f"meeting every check (developed, angles, bearing inside, TE level, slot): {n_all} of {n} "
+          f"width refitted in {n_refit}, of which {n_refit_ok} then fit); every root on or above the root cone: "
+          f"{n_root}")
+    print(f"meeting every check (developed, angles, bearing inside, TE level, slot, root): {n_all} of {n} "
           f"({100.0 * n_all / n:.0f} %)")
     for why, k in reasons.most_common():
         print(f"  {k:3d} x {why}")

@@ -92,6 +92,30 @@ def _version_callback(value: bool):
 GC_THRESHOLDS = (10_000, 50, 10)
 
 
+def _freeze_at_exit() -> None:
+    """Register, once per process, a last exit handler that moves every live object to the collector's permanent
+    generation (``gc.freeze``).
+
+    When the interpreter shuts down it clears every module and then collects the cycles this leaves: a full pass over
+    the hundreds of thousands of objects that numba, matplotlib and scipy keep, which frees them one by one only for
+    the process to end. That took 0.5-0.7 s CPU of the default ``spiralbevel run`` (3.3-4 s in all), after its last
+    output was written. Frozen objects are not collected, so the process ends without that pass; everything else of
+    the shutdown runs as before (the other exit handlers, which ran before this one, closing the streams). The
+    command's outputs are complete before: files are closed by ``with`` blocks and directories swapped in by
+    ``io.atomic``, never left to a finaliser.
+    """
+    import atexit
+    import gc
+
+    global _FROZEN_AT_EXIT
+    if not _FROZEN_AT_EXIT:
+        _FROZEN_AT_EXIT = True
+        atexit.register(gc.freeze)  # registered first: runs after every later-registered handler
+
+
+_FROZEN_AT_EXIT = False
+
+
 @app.callback()
 def _main(version: bool = typer.Option(False, "--version", callback=_version_callback, is_eager=True,
                                        help="Print the version and exit.")):
@@ -99,6 +123,7 @@ def _main(version: bool = typer.Option(False, "--version", callback=_version_cal
     import gc
 
     gc.set_threshold(*GC_THRESHOLDS)
+    _freeze_at_exit()
 
 
 DesignArg = typer.Argument(None, help="Design file (TOML), or the name of a bundled example (see "

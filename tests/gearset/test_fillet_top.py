@@ -20,7 +20,6 @@ import spiralbevel as sb
 from spiralbevel.conventions import Member, Side
 from spiralbevel.gearset.fillet_top import CAUSE, fillet_top_checks, fillet_top_messages, mate_top_height
 from spiralbevel.io.design_file import parse_design
-from spiralbevel.job import facemilled as fm
 from spiralbevel.job.blank import blank_from_design
 
 DESIGN_11x17 = """
@@ -42,16 +41,109 @@ kind = "face-milled"
 ALL = [(m, s) for m in (Member.PINION, Member.GEAR) for s in (Side.CONVEX, Side.CONCAVE)]
 
 
+#: (member, side) -> (HeadCutter fields, MachineSettings fields, source) of the four flanks of the 11/17 design as
+#: the default job developed it before TCA stopped counting touches of cut-away material past a limit line of
+#: generation (docs/conventions.md): the default search now settles on another coast candidate, with no edge contact;
+#: this pair's pinion fillet edge contact is real (TCA against the gap oracle of tests/meshing to 3e-6 arcsec)
+SETUPS_11x17 = {('pinion', 'convex'): ({'point_radius': 18.07264390038148,
+                         'blade_angle': 0.5682692271824084,
+                         'point_width': 0.3224241404496507,
+                         'edge_radius': 0.2795019010139679,
+                         'blade': 'inner',
+                         'profile_radius': 'inf',
+                         'profile_ref': 0.0},
+                        {'radial_setting': 22.75774303737177,
+                         'cradle_angle': 0.8788363328997945,
+                         'machine_root_angle': 0.3770114534793346,
+                         'machine_centre_to_back': -0.03257084622416073,
+                         'sliding_base': 0.0,
+                         'blank_offset': 0.0,
+                         'ratio_of_roll': 2.0819439643990165,
+                         'modified_roll': (-0.004646277389980819,),
+                         'blank_offset_poly': (),
+                         'blank_offset_table': ()},
+                        'local synthesis (coast side, free = modified-roll); point width 0.322 mm fitted to the '
+                        'tooth space (derived 1.086 mm)'),
+ ('pinion', 'concave'): ({'point_radius': 17.23648924354354,
+                          'blade_angle': 0.27148011581520687,
+                          'point_width': 0.7702810113342353,
+                          'edge_radius': 0.4816378947987851,
+                          'blade': 'outer',
+                          'profile_radius': 'inf',
+                          'profile_ref': 0.0},
+                         {'radial_setting': 23.683762771899257,
+                          'cradle_angle': 0.8555183100670555,
+                          'machine_root_angle': 0.3770114534793346,
+                          'machine_centre_to_back': -0.03257084622416073,
+                          'sliding_base': 0.0,
+                          'blank_offset': -1.1087999003063158,
+                          'ratio_of_roll': 2.426328664494284,
+                          'modified_roll': (),
+                          'blank_offset_poly': (),
+                          'blank_offset_table': ()},
+                         'local synthesis (drive side, free = offset); point width 0.770 mm fitted to the tooth '
+                         'space (derived 1.086 mm)'),
+ ('gear', 'convex'): ({'point_radius': 17.826856227689625,
+                       'blade_angle': 0.3945755321169123,
+                       'point_width': 1.0692442928087118,
+                       'edge_radius': 0.5933067521175278,
+                       'blade': 'inner',
+                       'profile_radius': 'inf',
+                       'profile_ref': 0.0},
+                      {'radial_setting': 23.781648053425695,
+                       'cradle_angle': 0.7302366868381314,
+                       'machine_root_angle': 0.5910546875382607,
+                       'machine_centre_to_back': 0.7241810193192606,
+                       'sliding_base': 0.0,
+                       'blank_offset': 0.0,
+                       'ratio_of_roll': 1.5379439278475806,
+                       'modified_roll': (),
+                       'blank_offset_poly': (),
+                       'blank_offset_table': ()},
+                      'basic settings solved for the design pressure and spiral angles, root on the root cone; '
+                      'point width 1.069 mm fitted to the tooth space (derived 1.086 mm)'),
+ ('gear', 'concave'): ({'point_radius': 18.913143772310377,
+                        'blade_angle': 0.29805422689415884,
+                        'point_width': 1.0601385597180206,
+                        'edge_radius': 0.5933067521175278,
+                        'blade': 'outer',
+                        'profile_radius': 'inf',
+                        'profile_ref': 0.0},
+                       {'radial_setting': 23.531448231221834,
+                        'cradle_angle': 0.8725966691359452,
+                        'machine_root_angle': 0.5910546875382607,
+                        'machine_centre_to_back': 0.7241810193192606,
+                        'sliding_base': 0.0,
+                        'blank_offset': 0.0,
+                        'ratio_of_roll': 1.5379439278475806,
+                        'modified_roll': (),
+                        'blank_offset_poly': (),
+                        'blank_offset_table': ()},
+                       'basic settings solved for the design pressure and spiral angles, root on the root cone; '
+                       'point width 1.060 mm fitted to the tooth space (derived 1.086 mm)')}
+
+
 @pytest.fixture(scope="module")
 def small():
-    """The 11/17 design, developed as the job does (default synthesis of the pinion)."""
+    """The 11/17 design with the four flanks of ``SETUPS_11x17`` (a developed pair: default synthesis of the
+    pinion)."""
     import warnings
+
+    from spiralbevel.gearset.facemilled import FlankSetup
+    from spiralbevel.generation.flank import generate_flank
+    from spiralbevel.machine.cutter import Blade, HeadCutter
+    from spiralbevel.machine.settings import MachineSettings
 
     spec = parse_design(DESIGN_11x17)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         blank = blank_from_design(spec)
-        setups = fm.setup_flanks(spec, blank, with_synthesis=True)[0]
+        setups = {}
+        for (m, s), (c, st, source) in SETUPS_11x17.items():
+            cutter = HeadCutter(**dict(c, blade=Blade(c["blade"]), profile_radius=float(c["profile_radius"])))
+            settings = MachineSettings(**st)
+            flank = generate_flank(cutter, settings, blank, Member(m), Side(s))
+            setups[(Member(m), Side(s))] = FlankSetup(Member(m), Side(s), cutter, settings, flank, source)
     return spec, blank, setups
 
 
@@ -156,13 +248,20 @@ def _pinion_fillet_contact(tca):
 
 
 def test_does_not_fire_on_the_iso_sample():
-    """ISO 23509 sample 1 (bundled): no flank's junction above the mate's tip contact (by 0.09 mm and more), and no
-    fillet edge contact in the TCA of either side."""
+    """ISO 23509 sample 1 (bundled): no fillet edge contact in the TCA of either side, so no warning. The estimate
+    alone: the gear's junctions and the pinion's convex one lie 0.08 mm and more below the mate's tip contact; the
+    pinion's concave one 0.03 mm above it, since its synthesized root, 0.09 mm below the root cone before, lies on the
+    root cone (gearset/root_cone.raise_root), its junction with it (and the wider point keeps the derived edge radius,
+    1.16 mm): a first-order estimate that the TCA does not confirm."""
     gs = sb.GearSet.from_design("iso23509_sample1")
     checks = fillet_top_checks(gs.blank, gs.setups)
     assert len(checks) == 4
-    for res in checks.values():
-        assert not isinstance(res, Exception) and not res.fires, res
+    for key, res in checks.items():
+        assert not isinstance(res, Exception), res
+        if key == (Member.PINION, Side.CONCAVE):
+            assert 0.0 < res.excess < 0.05
+        else:
+            assert res.excess < -0.08, (key, res.excess)
     tca = _tca(gs.blank, gs.setups)
     assert fillet_top_messages(gs.design, gs.blank, checks, tca) == {}
     assert _pinion_fillet_contact(tca) == {"drive": False, "coast": False}

@@ -3,9 +3,11 @@
 10/54 at beta 1.9 deg (bench/bench_robustness.py 40 1, design 31): the drive pinion candidate through the mean pitch
 point (path 0 deg, blade fixed) keeps the bearing inside; against the coast pinion side its derived point width
 (6.13 mm) cuts into the coast flank, and the width that fits (1.58 mm) holds only a third of the edge radius. The
-flank generated with that smaller edge radius puts the contact off the flanks at 19 of 41 positions. The search
-judges a candidate after the refit it will get (``gearset.refit_bearing.off_after_refit``); the whole 10/54 run
-(about 20 s of CPU) is left to the bench.
+flank generated with that smaller edge radius folds back over itself near its heel and fillet junction (past a limit
+line of generation, docs/conventions.md): TCA had put the contact there, on the fillet at 19 of 41 positions, on
+material the blade cuts away 0.10-0.12 mm deep; on the real flank the bearing stays inside. The search judges a
+candidate after the refit it will get (``gearset.refit_bearing.off_after_refit``); the whole 10/54 run (about 20 s of
+CPU) is left to the bench.
 """
 
 import math
@@ -67,7 +69,7 @@ def pair():
     return spec, blank, drive, gear, drive_setup, coast_setup
 
 
-def test_the_refit_that_shrinks_the_edge_radius_moves_the_bearing_and_the_search_sees_it(pair):
+def test_the_refit_that_shrinks_the_edge_radius_is_judged_after_the_refit(pair):
     spec, blank, drive, gear, drive_setup, coast_setup = pair
     s1 = drive_setup.side
     setups = {(Member.PINION, s1): drive_setup, (Member.PINION, coast_setup.side): coast_setup}
@@ -88,10 +90,10 @@ def test_the_refit_that_shrinks_the_edge_radius_moves_the_bearing_and_the_search
     again = generate_flank(new, drive.pinion_settings, blank, Member.PINION, s1)
     g1, g2 = flank.grid(9, 5, curvature=False), again.grid(9, 5, curvature=False)
     assert max(abs(float(a) - float(b)) for a, b in zip(g1.points.ravel(), g2.points.ravel())) < 1e-9
-    # the contact now runs onto the regenerated fillet at the ends of the mesh cycle, and the search's judge of the
-    # candidate reports the positions after the refit, not the verified 0
+    # the search's judge of the candidate reports the positions off the flanks after the refit: on the real flank of
+    # the regenerated pinion (not its cut-away fold) the bearing stays inside
     off = gfm.bearing_off_flank(blank, flank, gear.flank)
-    assert off > 0
+    assert off == 0
     assert off_after_refit(blank, drive, gear, s1, coast_setup) == off
     # the refit the pair then gets is this one (its first pass; the coast side fits, so no second pass changes it)
     fitted = dict(setups)

@@ -7,6 +7,10 @@ frame over the whole generating roll, no equation of meshing, no envelope).
 side first against the gear; the first coast (convex) candidate that keeps the bearing inside crosses the concave
 side's cutter near the toe root, so that even at 0.2 of its derived point width (the floor of the refit) the concave
 cutter's opposite blade cuts into the convex flank; the rule takes a later coast candidate, for which it does not.
+That closure came from the drive side's settings, which put the concave cutter's tip plane 2.14 mm below the root
+cone: the default synthesis now puts that root on the root cone (gearset/root_cone.raise_root), and the pair it
+develops fits with or without the rule. The case is kept as it was, the search without the rule also without the
+root placement: the rule's ranking and the sweep's verdict on that closure.
 """
 
 import importlib.util
@@ -19,7 +23,7 @@ import pytest
 
 from spiralbevel.conventions import Member, Side
 from spiralbevel.gearset import slot_check as sc
-from spiralbevel.gearset import slot_open
+from spiralbevel.gearset import root_cone, slot_open
 from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
 from spiralbevel.job.blank import blank_from_design
@@ -52,8 +56,9 @@ def _develop(monkeypatch=None):
         warnings.simplefilter("ignore")
         spec = parse_design(DESIGN_26X61)
         blank = blank_from_design(spec)
-        if monkeypatch is not None:      # the search without the rule
+        if monkeypatch is not None:      # the search without the rule and without the root placement
             monkeypatch.setattr(slot_open, "slot_closed", lambda *a: False)
+            monkeypatch.setattr(root_cone, "raise_root", lambda blank, res: res)
         setups = fm.setup_flanks(spec, blank)
     return blank, setups
 
@@ -91,15 +96,16 @@ def test_rejected_candidate_closes_the_slot(without_rule):
 
 
 def test_default_pair_fits_its_tooth_spaces(without_rule):
-    """With the rule every cutter of the default pair fits (the check, after the refit), the coast side is another
-    candidate than without the rule, the drive side the same; at the floor width the brute-force sweep finds the
-    slot open on both pinion sides (measured -0.35 mm concave, -2.05 mm convex: clearance)."""
+    """With the rule and the root placement every cutter of the default pair fits (the check, after the refit), the
+    drive side is the same candidate as without them up to the root placement (its sliding base 2.14 mm lower, every
+    other setting equal), and at the floor width the brute-force sweep finds the slot open on both pinion sides."""
     blank, setups = _develop()
     for k, res in sc.slot_checks(blank, setups).items():
         assert not isinstance(res, Exception) and res.fits, k
     _, old = without_rule
-    assert setups[(Member.PINION, Side.CONCAVE)].settings == old[(Member.PINION, Side.CONCAVE)].settings
-    assert setups[(Member.PINION, Side.CONVEX)].settings != old[(Member.PINION, Side.CONVEX)].settings
+    new_d, old_d = setups[(Member.PINION, Side.CONCAVE)].settings, old[(Member.PINION, Side.CONCAVE)].settings
+    assert replace(new_d, sliding_base=old_d.sliding_base) == old_d
+    assert new_d.sliding_base - old_d.sliding_base == pytest.approx(-2.14, abs=0.01)
     for s in PINION_SIDES:
         assert _tsc._swept_penetration(blank, _at_floor(setups, s), Member.PINION, s) < 0.0
 

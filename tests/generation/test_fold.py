@@ -8,7 +8,8 @@ import warnings
 import numpy as np
 import pytest
 
-from spiralbevel._core import generation as _g
+from _blade_sweep import penetration as blade_penetration
+
 from spiralbevel.conventions import Member, Side
 from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
@@ -38,18 +39,6 @@ def flank():
         spec = parse_design(DESIGN)
         blank = blank_from_design(spec)
         return fm._basic_setups(spec, blank)[(Member.GEAR, Side.CONVEX)].flank
-
-
-def _to_machine(p, psi, mp):
-    """Canonical member-frame points -> machine frame at cradle angle psi (inverse of
-    ``_core.generation.to_member``)."""
-    g = mp["gamma"]
-    psi_i, _, _ = _g.roll(psi, mp)
-    E, _, _ = _g.offset(psi, mp)
-    c, s = np.cos(psi_i), np.sin(psi_i)
-    xb, yb, zb = c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1], p[..., 2]
-    v = np.stack([xb * np.sin(g) - zb * np.cos(g), yb, xb * np.cos(g) + zb * np.sin(g)], -1)
-    return v + np.stack([np.zeros_like(E), E, np.full_like(E, -mp["XB"])], -1) + mp["XD"] * _g.work_axis(mp)
 
 
 def test_fold_lies_inside_the_face_and_the_flank_is_generated_through_it(flank):
@@ -99,21 +88,10 @@ def test_no_point_of_the_flank_is_cut_away(flank):
     undercut or secondary cutting."""
     g = flank.grid(9, 5, curvature=False)
     gen = flank.generator
-    cp, mp = gen.cp, gen.mp
-    s, c0 = cp["s"], cp["chi0"]
     psis = np.linspace(g.psi_c.min() - 0.3, g.psi_c.max() + 0.3, 1201)
 
     def penetration(points):
-        p = gen._mirror(points.reshape(-1, 3))       # the canonical (left-hand) machine's member frame
-        pen = np.full(len(p), -np.inf)
-        for psi in psis:
-            r = _to_machine(p, np.full(len(p), psi), mp)
-            C = mp["S"] * np.array([np.cos(np.pi - mp["q"] + psi), np.sin(np.pi - mp["q"] + psi)])
-            rho = np.hypot(r[:, 0] - C[0], r[:, 1] - C[1])
-            rho_b = cp["Rh"] - s * r[:, 2] / np.sin(c0) * np.cos(c0)      # u = -z / sin(chi0) on the straight blade
-            near = (r[:, 2] < -cp["u_j"] * np.sin(c0)) & (np.abs(rho_b - rho) < 5.0)   # this blade, above the fillet
-            pen = np.maximum(pen, np.where(near, s * (rho_b - rho), -np.inf))
-        return pen
+        return blade_penetration(gen, points, psis).reshape(-1)
 
     pen = penetration(g.points)
     # the largest penetration is the touch at the generating cradle angle (0 to round-off of 1e2 mm coordinates)

@@ -125,3 +125,37 @@ def test_max_scallop_is_the_tangency_of_the_two_balls(kappa):
     if kappa > 0:  # above the limit (still < R) there is no stepover: NaN from the kernel, never a spurious root
         assert hmax * 1.01 < R and np.isnan(stepover_for_scallop(R, hmax * 1.01, kappa))
     assert float(max_scallop(R, -0.6 / R)) == math.inf
+
+
+def _stepover_all_branches(R, h, k):
+    """The formula of :func:`stepover_for_scallop` with every branch evaluated and selected elementwise (the form the
+    kernel had before its shortcut for arrays without full circles or near-zero arguments)."""
+    q = np.sqrt(h * (2.0 * R - h) / ((1.0 + k * R) * (1.0 + k * h)))
+    x = 0.5 * np.abs(k) * q
+    full = x >= 1.0
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        w_full = np.where(full, 2.0 * np.pi / np.where(k == 0, 1.0, np.abs(k)), 0.0)
+        xm = np.minimum(x, 1.0)
+        small = np.abs(xm) < 1e-3
+        xs = np.where(small, 1.0, xm)
+        ratio = np.where(small, 1.0 + xm**2 / 6.0 + 3.0 * xm**4 / 40.0, np.arcsin(np.clip(xs, -1.0, 1.0)) / xs)
+        hmax = np.where(1.0 + 2.0 * R * k > 0, 2.0 * R / (1.0 + np.sqrt(np.maximum(1.0 + 2.0 * R * k, 0.0))), np.inf)
+    return np.where(h < hmax, np.where(full, w_full, 2.0 * q * ratio), np.nan)
+
+
+@pytest.mark.parametrize("mix", ["march", "with_small", "with_full", "with_both"])
+def test_shortcut_gives_the_same_bits_as_every_branch(mix):
+    """The kernel skips the series and the full-circle branch when no element needs them (the tool-path march): the
+    result must be bit for bit the elementwise selection of all branches, with and without such elements."""
+    rng = np.random.default_rng(7)
+    R, h = 2.0, 0.005
+    k = rng.uniform(-0.2, 0.3, 257)                         # march-like curvatures: x of order 1e-2
+    if mix in ("with_small", "with_both"):
+        k[::17] = rng.uniform(-1e-6, 1e-6, k[::17].size)      # x below 1e-3: the series
+    if mix in ("with_full", "with_both"):
+        k[5::23] = -0.4999                                    # concave, 1 + kR near 0: any stepover, full circle
+    got = stepover_for_scallop(R, h, k)
+    ref = _stepover_all_branches(R, h, k)
+    assert np.array_equal(got, ref, equal_nan=True)
+    assert (mix in ("with_full", "with_both")) == bool(np.any(0.5 * np.abs(k) * np.sqrt(
+        h * (2 * R - h) / ((1 + k * R) * (1 + k * h))) >= 1.0))   # the case really takes the branch it names

@@ -4,8 +4,10 @@ face-milled job gave its coast flanks before the TCA saw the gear's fillet inter
 from a candidate of the default local synthesis, the gear's concave flank from the basic settings), stored here so
 that a test rebuilds the flanks in a fraction of a second instead of re-running the synthesis (about 30 s).
 
-The gear's fillet junction runs against the pinion flank ahead of the pair's surface contact, over most of the mesh
-cycle: an edge contact of a pair that still has a real surface contact.
+The gear's concave flank folds back over itself near its fillet junction (past a limit line of generation); TCA
+had reported that folded part's fillet junction against the pinion flank ahead of the pair's surface contact, over
+most of the mesh cycle, up to 108 arcsec. The folded part is cut away: the real teeth touch at the surface contact
+(tests/meshing/test_tca_limit_line.py).
 
 ``SETTINGS`` below is the output of ``python tests/meshing/_interference_pair.py`` (run from the repository root: it
 draws the design from the bench's sampler, solves the basic settings and that local synthesis and prints the values).
@@ -71,6 +73,12 @@ SETTINGS = {('pinion', 'convex'): ({'point_radius': 98.32769953873743,
 
 def coast_pair():
     """``(pinion, gear, kinematics)`` of the coast side: the phased contact surfaces of the job's TCA."""
+    return build_pair(DESIGN, SETTINGS)
+
+
+def build_pair(design, settings):
+    """``(pinion, gear, kinematics)``: the phased contact surfaces of the two flanks of ``settings`` ((member, side)
+    -> (HeadCutter fields, MachineSettings fields), pinion first) on the blank of the design file text ``design``."""
     from spiralbevel.conventions import Member, Side
     from spiralbevel.generation.flank import generate_flank
     from spiralbevel.io.design_file import parse_design
@@ -80,13 +88,12 @@ def coast_pair():
     from spiralbevel.meshing.generated_surface import phased_for_pair
     from spiralbevel.meshing.kinematics import BevelPairKinematics
 
-    blank = blank_from_design(parse_design(DESIGN))
+    blank = blank_from_design(parse_design(design))
     flanks = []
-    for m, s in (("pinion", "convex"), ("gear", "concave")):
-        c, st = SETTINGS[(m, s)]
+    for (m, s), (c, st) in settings.items():
         c = dict(c, blade=Blade(c["blade"]), profile_radius=float(c["profile_radius"]))
-        cutter, settings = HeadCutter(**c), MachineSettings(**st)
-        flanks.append(generate_flank(cutter, settings, blank, Member(m), Side(s)))
+        cutter, ms = HeadCutter(**c), MachineSettings(**st)
+        flanks.append(generate_flank(cutter, ms, blank, Member(m), Side(s)))
     c1, c2 = phased_for_pair(*flanks)
     return c1, c2, BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
 

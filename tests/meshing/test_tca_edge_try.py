@@ -15,6 +15,7 @@ from spiralbevel._core import tca_edge_screen as ks
 from spiralbevel.meshing import tca_edge as te_mod
 from spiralbevel.meshing.contact_problem import ContactProblem
 from spiralbevel.meshing.contact_surface import surface_contains
+from spiralbevel.meshing.generated_surface import EDGE_TOL, GeneratedSurface
 from spiralbevel.meshing.misalignment import Misalignment
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_edge_solve import (_H_TAU, _RCOND, compiled_args, corner_index, margins_of,
@@ -27,6 +28,22 @@ def facemilled():
     c1, c2, kin = seed001_synthesized_pair()
     kw = dict(start=np.r_[c1.reference_params, c2.reference_params, 0.0])
     return c1, c2, kin, kw, solve_tca(c1, c2, kin, **kw)
+
+
+def _margins_only(monkeypatch):
+    """The generated flank's ``contains`` as its margin test alone (no limit-line test ``on_sheet``): the flanks for
+    which TCA runs the one-call edge solve (``compiled_args``)."""
+    def contains(self, params):
+        with np.errstate(invalid="ignore"):
+            return np.all(self.boundary_margins(params) >= -EDGE_TOL, axis=-1)
+
+    monkeypatch.setattr(GeneratedSurface, "contains", contains)
+    monkeypatch.delattr(GeneratedSurface, "on_sheet")
+
+
+def test_flanks_with_a_limit_line_test_run_the_separate_steps(facemilled):
+    c1, c2, kin, _, _ = facemilled
+    assert compiled_args(ContactProblem(c1, c2, kin))[5].tolist() == [-1.0, -1.0]
 
 
 def _reference(prob, phi1, pairs, ii, jj, mem, ee, x0, floor, te_edge, x_edge, drive, phi2_mean, phi1_mean):
@@ -48,8 +65,9 @@ def _reference(prob, phi1, pairs, ii, jj, mem, ee, x0, floor, te_edge, x_edge, d
     return xs, conv, ndot, gg, te, out
 
 
-def test_edge_try_matches_the_separate_steps(facemilled):
+def test_edge_try_matches_the_separate_steps(facemilled, monkeypatch):
     c1, c2, kin, _, res = facemilled
+    _margins_only(monkeypatch)
     prob = ContactProblem(c1, c2, kin)
     args = compiled_args(prob)
     assert args is not None and min(args[5]) > 0  # generated flanks: compiled jets, margins and contains
@@ -103,9 +121,11 @@ def test_edge_try_matches_the_separate_steps(facemilled):
 
 def test_tca_with_the_fused_call_equals_the_separate_steps(facemilled, monkeypatch):
     """Whole TCA, aligned and misaligned (more edge contacts), with and without the fused call: identical results."""
-    c1, c2, kin, kw, res = facemilled
+    c1, c2, kin, kw, _ = facemilled
+    _margins_only(monkeypatch)
+    assert min(compiled_args(ContactProblem(c1, c2, kin))[5]) > 0
     mis = Misalignment(pinion_axial=0.05, gear_axial=-0.03, offset=0.04, shaft_angle=0.0)
-    fused = [res, solve_tca(c1, c2, kin, misalignment=mis, **kw)]
+    fused = [solve_tca(c1, c2, kin, **kw), solve_tca(c1, c2, kin, misalignment=mis, **kw)]
     monkeypatch.setattr(te_mod, "compiled_args", lambda prob: None)
     steps = [solve_tca(c1, c2, kin, **kw), solve_tca(c1, c2, kin, misalignment=mis, **kw)]
     for a, b in zip(fused, steps):

@@ -144,29 +144,3 @@ def test_bundled_facemilled_drive_corner_contacts_match_brute_force():
     assert np.max(np.abs(d)) <= TOL_ARCSEC, (idx, np.round(d, 4), res.status[idx])
     kinds = {e[2:] for e in res.edges if e[0] in idx}
     assert {("pinion/gear", "heel/top corner"), ("pinion", "heel/fillet corner"), ("pinion", "fillet")} <= kinds, kinds
-
-
-#: arcsec: the oracle resolves a touch to about 1e-5 arcsec (see TOL_ARCSEC; at most 6e-6 arcsec on the positions of
-#: the interfering pair below); the edge contacts it missed were 0.59-108 arcsec ahead
-TOL_INTERFERENCE_ARCSEC = 5e-5
-
-
-def test_edge_contact_ahead_of_a_real_surface_contact_matches_brute_force():
-    # the coast pair of a sample design of bench/bench_robustness.py (tests/meshing/_interference_pair.py): the gear's
-    # fillet junction touches the pinion flank ahead of the same pair's surface contact, which lies inside both flanks
-    # (positions 0-16 of pair 1 and, one pitch earlier, positions 31-40 of pair 0). TCA marched to edge contacts only
-    # where a pair had no real surface contact and within one pair's positions: it reported the trailing surface
-    # contacts there, 0.59 arcsec (position 31) to 108 arcsec (position 0) behind the oracle
-    from _interference_pair import coast_pair
-
-    c1, c2, kin = coast_pair()
-    res = solve_tca(c1, c2, kin, n_positions=41, start=np.r_[c1.reference_params, c2.reference_params, 0.0])
-    idx = np.array([0, 14, 16, 31, 40])
-    d = _deviation(c1, c2, kin, res, Misalignment(), idx)
-    assert np.all(np.isfinite(d)), (idx[~np.isfinite(d)], res.status[idx])
-    assert np.max(np.abs(d)) <= TOL_INTERFERENCE_ARCSEC, (idx, d, res.status[idx])
-    # there the leading contact is that edge, of a pair that also has a surface contact on the real flanks
-    kinds = {e[0]: e[1:] for e in res.edges}
-    for i in idx:
-        assert kinds.get(int(i), ())[1:] == ("gear", "fillet"), (i, kinds.get(int(i)))
-        assert res.status[i] == ContactStatus.EDGE

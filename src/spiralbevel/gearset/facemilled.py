@@ -333,6 +333,9 @@ def _synthesize_sides(sy, blank, setups, syn, refit=None, floors=None):
         if res.pinion_cutter.point_width < pin.cutter.point_width - 1e-9:   # gearset/pinion_fillet.lower_root
             source += (f"; root lowered onto the root cone: blade extended to a point width of "
                        f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
+        if res.pinion_cutter.point_width > pin.cutter.point_width + 1e-9:   # gearset/root_cone.raise_root
+            source += (f"; root raised onto the root cone: blade tip cut back to a point width of "
+                       f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
         if res.pinion_cutter.edge_radius < pin.cutter.edge_radius:
             source += (f"; edge radius {res.pinion_cutter.edge_radius:.3f} mm refitted to keep the generated fillet "
                        f"below the gear's top (derived {pin.cutter.edge_radius:.3f} mm)")
@@ -394,6 +397,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
     """
     from .pinion_fillet import fit_pinion_edge_radius, lower_root
     from .refit_bearing import off_after_refit
+    from .root_cone import raise_root
     from .slot_open import slot_closed
 
     slot_other, floors = slot
@@ -419,6 +423,8 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
             pinion_settings_hint=pin.settings if hint else None)
         if default:
             _require_near_branch(res, pin)
+        if floors is not None and floors[s1] < 1.0:   # a derived point width: the root on the root cone
+            res = raise_root(blank, res)              # (gearset/root_cone.py), the blade unchanged
         return res
 
     def judge(res, frac, free, eta=None):

@@ -208,6 +208,9 @@ class GearSet:
             from .slot_check import slot_report
 
             slot_report(self.design, self.blank, self.setups, flanks)   # each cutter's opposite blade (as the job)
+            from .root_cone import root_cone_report
+
+            root_cone_report(self.design, self.setups, flanks)   # each generated root against the root cone
             from .fillet_top import fillet_top_report
             from .tca import side_tca
 

@@ -18,11 +18,14 @@ class Steps:
 
     def __enter__(self):
         if self.enabled:
+            from rich import get_console
             from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
+            # redrawn by a background thread only on a terminal: to a file or pipe rich writes the bar once, in its
+            # final state, so the thread would only rebuild it unseen 10 times a second for the whole run
             self._progress = Progress(TextColumn("{task.description:<38}"), BarColumn(),
                                       TextColumn("{task.completed}/{task.total}"),
-                                      TimeElapsedColumn(), transient=False)
+                                      TimeElapsedColumn(), transient=False, auto_refresh=get_console().is_terminal)
             self._progress.__enter__()
             self._task = self._progress.add_task("starting", total=self.total)
         return self

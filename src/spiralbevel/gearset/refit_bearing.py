@@ -3,8 +3,10 @@
 The refit (:func:`~spiralbevel.gearset.slot_refit.fit_point_widths`) narrows a derived point width that cuts into
 the other flank of its tooth space; when the narrower point holds a smaller edge radius only, the flank is generated
 again, its fillet reaches elsewhere, and the contact at the ends of the mesh cycle can run onto it (10/54 of
-bench/bench_robustness.py 40 1, drive: 6.13 -> 1.55 mm, edge radius 3.35 -> 1.05 mm, 19 of 41 positions on the
-pinion's fillet, where the search had verified 0). The default synthesis therefore judges a candidate of the pinion
+bench/bench_robustness.py 40 1, drive: 6.13 -> 1.55 mm, edge radius 3.35 -> 1.05 mm, was read as 19 of 41 positions
+on the pinion's fillet, where the search had verified 0; those contacts lay on a fold of the regenerated flank past
+its limit line of generation, material the blade cuts away, and on the real flank the bearing stays inside,
+tests/gearset/test_refit_bearing.py). The default synthesis therefore judges a candidate of the pinion
 side synthesized last after the refit it will get (:func:`off_after_refit`), and checks each side again once the
 pair is refitted (:func:`keep_verified_bearings`).
 """

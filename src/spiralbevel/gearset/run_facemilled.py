@@ -26,6 +26,9 @@ def run_facemilled(gs, out, steps, report, summary):
         from .slot_check import slot_report
 
         slot_report(spec, blank, setups, flanks)      # each cutter's opposite blade against the opposite flank
+        from .root_cone import root_cone_report
+
+        root_cone_report(spec, setups, flanks)        # each generated root against the blank's root cone
         report["flanks"] = flanks
         report["machine_settings"] = machines
     with steps.step("tooth assembly"):

@@ -28,6 +28,7 @@ __all__ = [
     "ContactSurface",
     "surface_derivatives",
     "surface_contains",
+    "surface_on_sheet",
     "surface_edge",
     "principal_curvatures",
     "NormalDeviation",
@@ -84,6 +85,15 @@ def surface_contains(surface, params):
     params = np.asarray(params, float)
     if hasattr(surface, "contains"):
         return np.asarray(surface.contains(params), bool)
+    return np.ones(params.shape[:-1], bool)
+
+
+def surface_on_sheet(surface, params):
+    """``surface.on_sheet(params)`` (not past a limit line of generation) or all True, shape params.shape[:-1]."""
+    params = np.asarray(params, float)
+    if hasattr(surface, "on_sheet"):
+        with np.errstate(invalid="ignore"):
+            return np.asarray(surface.on_sheet(params), bool)
     return np.ones(params.shape[:-1], bool)
 
 

@@ -67,8 +67,9 @@ class GeneratedSurface:
 
     @property
     def contains_margin_tol(self):
-        """``EDGE_TOL`` where :meth:`contains` is "every compiled margin (``boundary_jet``) >= -EDGE_TOL", which
-        compiled TCA then tests itself; None for a per-system offset law (no compiled margins)."""
+        """``EDGE_TOL``: the margin part of :meth:`contains` is "every compiled margin (``boundary_jet``) >= -EDGE_TOL";
+        None for a per-system offset law (no compiled margins). (:meth:`contains` also tests :meth:`on_sheet`, which
+        the compiled edge screen does not: TCA screens such surfaces by the separate steps.)"""
         return None if self._prm() is None else EDGE_TOL
 
     @property
@@ -165,13 +166,43 @@ class GeneratedSurface:
             return np.stack([R - ol.Ri, ol.Re - R, ol.h_face(R) - h, u - self.flank.generator.cp["u_j"]], -1)
 
     def contains(self, params):
-        """True where (phi, psi_c) lies on the flank: between toe and heel, above the fillet junction, below the top.
+        """True where (phi, psi_c) lies on the flank: between toe and heel, above the fillet junction, below the top,
+        and not past a limit line of generation (:meth:`on_sheet`).
 
         A point on a boundary counts as on the flank within ``EDGE_TOL`` (a point that a solver put on an edge has
         margins of round-off size, of either sign)."""
         g = self.boundary_margins(params)
         with np.errstate(invalid="ignore"):
-            return np.all(g >= -EDGE_TOL, axis=-1)
+            return np.all(g >= -EDGE_TOL, axis=-1) & self.on_sheet(params)
+
+    def on_sheet(self, params):
+        """True where (phi, psi_c) lies on the sheet of the envelope that bounds the tooth: the orientation of the
+        chart's tangents, sign((r_phi x r_psi) . n), is that at the mean point.
+
+        Past a limit line of generation (where r_phi x r_psi vanishes: the generated surface has a cuspidal edge, the
+        first sign of undercut, Litvin & Fuentes, *Gear Geometry and Applied Theory*, 2nd ed., Sec. 6.3) the envelope
+        folds back over itself: its points there lie on the air side of the sheet before the fold, inside the blade
+        at the cradle angles that generate that sheet, i.e. cut away (tests/meshing/test_tca_limit_line.py shows it
+        by sweeping the blade). Such points are no part of the real flank."""
+        params = np.asarray(params, float)
+        S, _, _ = self._jet(params.reshape(-1, 2))
+        with np.errstate(invalid="ignore"):
+            return (_orientation(S) * self._sheet_sign() > 0).reshape(params.shape[:-1])
+
+    def _sheet_sign(self):
+        """sign((r_phi x r_psi) . n) at the mean point, kept with the jet parameters it was computed for."""
+        prm = self._prm()
+        if getattr(self, "_sheet_src", None) is not prm or prm is None:
+            self._sheet = float(np.sign(_orientation(self._jet(self.reference_params[None])[0])[0]))
+            self._sheet_src = prm
+        return self._sheet
+
+
+def _orientation(S):
+    """(r_phi x r_psi) . n (k,) of stacked jets S (k, 3, 6) (columns r, n, r_phi, r_psi, ...)."""
+    a, b, n = S[:, :, 2], S[:, :, 3], S[:, :, 1]
+    return ((a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]) * n[:, 0] + (a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]) * n[:, 1]
+            + (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) * n[:, 2])
 
 
 class GeneratedSurfaceUPsi:

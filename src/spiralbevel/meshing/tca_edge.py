@@ -100,7 +100,8 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     corner's point past the end of its own boundary: that flank's vertex) and labelled ("pinion/gear",
     "heel/top corner") or, for a vertex, ("pinion", "heel/fillet corner").
     """
-    from .contact_surface import surface_contains
+    from .contact_surface import surface_contains, surface_on_sheet
+    from .generated_surface import EDGE_TOL
 
     n, P = status.shape
     T1 = 2 * np.pi / prob.z1
@@ -165,12 +166,21 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
             # of its boundaries (margins >= -1e-9 but the held ones; NaN fails) or, held on none, on the real flank,
             # and whether the solution is a contact (converged, opposed normals, |TE| below half a gear pitch); then
             # the solutions that lead their pair's best contact so far: compiled (spiralbevel._core.tca_edge_screen)
-            conv = np.ascontiguousarray(conv, bool)
+            conv = np.array(conv, bool)
+            ic = np.flatnonzero(conv)
+            if ic.size:
+                # a solution whose point (held on a boundary or not) lies on a part of a flank cut away past a limit
+                # line of generation (the surfaces' ``on_sheet``) is no contact of the real teeth
+                conv[ic] = surface_on_sheet(surfs[0], xs[ic, 0:2]) & surface_on_sheet(surfs[1], xs[ic, 2:4])
             C = [np.zeros(k, bool), np.zeros(k, bool)]
             ic = np.flatnonzero(conv)
             if ic.size:
                 for m in (0, 1):
-                    C[m][ic] = surface_contains(surfs[m], xs[ic, 2 * m:2 * m + 2])
+                    if hasattr(surfs[m], "on_sheet"):    # contains: the margins and on_sheet, which conv holds already
+                        with np.errstate(invalid="ignore"):
+                            C[m][ic] = np.all(gg[m][ic] >= -EDGE_TOL, axis=1)
+                    else:
+                        C[m][ic] = surface_contains(surfs[m], xs[ic, 2 * m:2 * m + 2])
             _ks.screen(gg[0], gg[1], mem, ee, k1, K, conv, np.ascontiguousarray(ndot, float), te, np.pi / prob.z2,
                        1e-9, C[0], C[1], ii, jj, np.ascontiguousarray(xs, float), floor, te_edge, x_edge, last, corner,
                        ma, ea, mb, eb, good, ok, new, win)

@@ -68,7 +68,10 @@ def compiled_args(prob):
             s = ()
         else:
             (k1, p1), (k2, p2) = prob._jets
-            ct = [getattr(sf, "contains_margin_tol", None) for sf in (prob.pinion, prob.gear)]
+            # a surface with a limit-line test (``on_sheet``, part of its ``contains``) is screened by the separate
+            # steps, which apply it: the compiled screen tests the margins alone
+            ct = [None if hasattr(sf, "on_sheet") else getattr(sf, "contains_margin_tol", None)
+                  for sf in (prob.pinion, prob.gear)]
             s = (np.array([k1, b1[0], int(sh1), k2, b2[0], int(sh2)], np.int64), np.ascontiguousarray(p1, float),
                  b1[1], np.ascontiguousarray(p2, float), b2[1],
                  np.array([-1.0 if t is None else float(t) for t in ct]))

@@ -1,0 +1,194 @@
+"""The design check "root below the root cone" and the placement of a synthesized root on it (gearset/root_cone.py).
+
+The check's root heights (the cutter's tip line located on the equation of meshing, then Newton's method at each face
+station) against a brute force that uses no equation of meshing: the cutter's tip circle swept over a dense grid of
+cutter angles and cradle angles, each point mapped into the member's axial section by the machine kinematics alone,
+and at each station the lowest of these points above the root cone (the tip plane lies outside the surface of
+revolution it generates, so the lowest swept point at a cone distance is the root there, approached from above by the
+grid's spacing squared). Cases: the 12/41 pinion's concave flank (where the 3-station ``root_deviation`` of the
+design-vs-achieved table finds no enveloped point) with its root sunk 0.4 mm (sliding base) and tilted (machine root
+angle), and a developed 11/25 pair whose synthesized drive pinion's root lay 1.75 mm below the root cone before
+:func:`raise_root`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from spiralbevel.conventions import Member, Side
+from spiralbevel.generation.basic_settings_solve import root_deviation
+from spiralbevel.generation.flank import generate_flank
+from spiralbevel.gearset.root_cone import (CAUSE, ROOT_STATIONS, raise_root, root_cone, root_cone_checks,
+                                           root_cone_messages, root_heights)
+from spiralbevel.io.design_file import parse_design
+from spiralbevel.job import facemilled as fm
+from spiralbevel.job.blank import blank_from_design
+from _design_12x41 import design_12x41
+
+#: design 10 of ``bench_robustness.py 40 1``: the default synthesis' drive pinion cut 1.754 mm below the root cone
+DESIGN_11x25 = """
+title = "11/25 of the robustness bench (bench_robustness.py 40 1, design 10)"
+[gear_set]
+pinion_teeth = 11
+gear_teeth = 25
+shaft_angle = {sigma}
+module = {m}
+face_width = {b}
+normal_pressure_angle = 20
+mean_spiral_angle = {beta}
+pinion_hand = "LH"
+cutter_radius = {rc}
+[flank]
+kind = "face-milled"
+"""
+
+
+@dataclasses.dataclass(frozen=True)
+class Result:
+    """The fields of a SynthesisResult that the placement reads and replaces."""
+
+    pinion_cutter: object
+    pinion_settings: object
+    pinion_flank: object
+
+
+@pytest.fixture(scope="module")
+def case():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        spec = parse_design(design_12x41())
+        blank = blank_from_design(spec)
+        setups = fm._basic_setups(spec, blank)
+    return spec, blank, setups
+
+
+def brute_root(flank, R):
+    """Lowest height (mm) above the root cone of the swept tip circle at cone distances ``R`` (module docstring):
+    a grid of cutter angle x cradle angle over the whole cutter circle and +-0.6 rad of roll (points 0.26 mm apart
+    on a 60 mm cutter), the lowest point of each station's bin (|R' - R| < 0.5 mm), then three times a grid ten
+    times finer around it (+-3 steps of the last grid) with a bin ten times narrower."""
+    gen, ol = flank.generator, flank.outline
+    u0 = gen.cp["u_min"]
+
+    def heights(phi, psi):
+        ax, rad, _ = gen.point_at(u0, phi, psi)
+        Rx, h = ol.Rh(ax, rad)
+        return Rx, h - ol.h_root(Rx)
+
+    phi, psi = np.meshgrid(np.linspace(-math.pi, math.pi, 1441), np.linspace(-0.6, 0.6, 401), indexing="ij")
+    Rx, d = heights(phi, psi)
+    out = []
+    for Rk in R:
+        dphi, dpsi, w = 2.0 * math.pi / 1440, 1.2 / 400, 0.5
+        i = np.argmin(np.where(np.abs(Rx - Rk) < w, d, np.inf))
+        p0, s0, best = phi.flat[i], psi.flat[i], d.flat[i]
+        for _ in range(3):
+            P, S = np.meshgrid(p0 + np.linspace(-3, 3, 61) * dphi, s0 + np.linspace(-3, 3, 61) * dpsi, indexing="ij")
+            Rl, dl = heights(P, S)
+            w *= 0.1
+            j = np.argmin(np.where(np.abs(Rl - Rk) < w, dl, np.inf))
+            p0, s0, best = P.flat[j], S.flat[j], dl.flat[j]
+            dphi, dpsi = dphi / 10.0, dpsi / 10.0
+        out.append(best)
+    return np.array(out)
+
+
+@pytest.mark.parametrize("change", [("sliding_base", 0.4), ("machine_root_angle", math.radians(0.3))],
+                         ids=["sunk", "tilted"])
+def test_root_heights_against_the_swept_tip_circle(case, change):
+    spec, blank, setups = case
+    st = setups[(Member.PINION, Side.CONCAVE)]
+    name, d = change
+    settings = dataclasses.replace(st.settings, **{name: getattr(st.settings, name) + d})
+    flank = generate_flank(st.cutter, settings, blank, Member.PINION, Side.CONCAVE)
+    R, h = root_heights(flank)
+    assert len(R) == ROOT_STATIONS
+    ref = brute_root(flank, R)
+    # the brute force approaches the root from above by its last grid's spacing squared over the curvature radius
+    # (3e-4 mm steps: below 1e-8 mm) and from below by the root's slope along the face times its last bin's
+    # half-width (tilted: 0.0052 x 5e-4 mm = 3e-6 mm)
+    assert np.max(np.abs(ref - h)) < 1e-5
+    if name == "sliding_base":   # the sunk root: 0.4 mm deeper all along the face (0 before, to 1e-5 mm)
+        assert h == pytest.approx(-0.4, abs=0.02)
+    else:                        # tilted: deeper toward one end, the check's station and the brute force agree
+        assert np.ptp(h) > 0.05
+
+
+def test_root_heights_agree_with_root_deviation_where_it_finds_the_root(case):
+    """A second measure of the same root: ``root_deviation`` samples the fillet 0.02 rad of the edge radius above
+    the tip (rho (1 - cos 0.02) = 2e-4 rho higher) by the locator's Newton solve, at toe, mean and heel."""
+    _, blank, setups = case
+    st = setups[(Member.PINION, Side.CONVEX)]
+    sunk = generate_flank(st.cutter, dataclasses.replace(st.settings, sliding_base=st.settings.sliding_base + 0.4),
+                          blank, Member.PINION, Side.CONVEX)
+    for flank in (st.flank, sunk):
+        dev = np.array(root_deviation(flank), float)
+        R, h = root_heights(flank, 3)
+        rho = flank.cutter.edge_radius
+        assert np.all(np.abs(dev - (h + rho * (1 - math.cos(0.02)))) < 1e-3)
+
+
+def test_raise_root_puts_the_root_on_the_cone_with_the_same_blade(case):
+    _, blank, setups = case
+    st = setups[(Member.PINION, Side.CONCAVE)]
+    sunk = dataclasses.replace(st.settings, sliding_base=st.settings.sliding_base + 0.4)
+    flank = generate_flank(st.cutter, sunk, blank, Member.PINION, Side.CONCAVE)
+    assert root_cone(flank).below
+    new = raise_root(blank, Result(st.cutter, sunk, flank))
+    after = root_cone(new.pinion_flank)
+    assert not after.below and after.lowest == pytest.approx(0.0, abs=1e-3)
+    assert np.max(np.abs(brute_root(new.pinion_flank, after.R[[0, 5, 10]]) - after.height[[0, 5, 10]])) < 1e-5
+    delta = new.pinion_settings.sliding_base - sunk.sliding_base
+    assert delta == pytest.approx(-0.4, abs=0.02)
+    # the same blade surface: the old blade parameter u is u + Delta / cos(alpha) of the shortened blade
+    c = st.cutter
+    u_j = c.fillet_range[1]
+    u, psi = np.meshgrid(np.linspace(u_j + 0.5, u_j + 6.0, 12), np.linspace(-0.15, 0.15, 7))
+    old = flank.generator.points(u, psi)
+    shifted = new.pinion_flank.generator.points(u + delta / math.cos(c.blade_angle), psi)
+    assert np.max(np.abs(shifted - old)) < 1e-11            # round-off of the generation kernel at ~100 mm
+    assert new.pinion_cutter.point_width == pytest.approx(c.point_width - 2.0 * delta * math.tan(c.blade_angle))
+    assert new.pinion_cutter.edge_radius == c.edge_radius
+    # a root on the cone is left alone
+    assert raise_root(blank, Result(st.cutter, st.settings, st.flank)).pinion_flank is st.flank
+
+
+def test_messages_name_the_key(case):
+    spec, blank, setups = case
+    st = setups[(Member.PINION, Side.CONCAVE)]
+    sunk = dataclasses.replace(st.settings, sliding_base=st.settings.sliding_base + 0.4)
+    flank = generate_flank(st.cutter, sunk, blank, Member.PINION, Side.CONCAVE)
+    basic = {(Member.PINION, Side.CONCAVE): dataclasses.replace(st, settings=sunk, flank=flank)}
+    msg = root_cone_messages(spec, basic, root_cone_checks(basic))[(Member.PINION, Side.CONCAVE)][0]
+    assert msg.startswith(CAUSE) and "face_milling.pinion_concave.machine.machine_root_angle" in msg
+    assert f"{-root_cone(flank).lowest:.3f} mm below" in msg
+    # a synthesized pinion with the point width given in the design file: that key, and the width that places it
+    given = parse_design(design_12x41().replace("[flank]", "[face_milling]\npoint_width = 2.0\n[flank]"))
+    synth = {(Member.PINION, Side.CONCAVE): dataclasses.replace(basic[(Member.PINION, Side.CONCAVE)],
+                                                                 source="local synthesis (drive side)")}
+    msg = root_cone_messages(given, synth, root_cone_checks(synth))[(Member.PINION, Side.CONCAVE)][0]
+    w = st.cutter.point_width - 2.0 * root_cone(flank).lowest * math.tan(st.cutter.blade_angle)
+    assert "face_milling.point_width" in msg and f"at least {w:.3f} mm" in msg
+    assert root_cone_messages(spec, setups, root_cone_checks(setups)) == {}    # the basic roots lie on the cone
+
+
+def test_developed_pair_roots_on_the_cone():
+    """The default synthesis of the 11/25 design puts every root on the root cone (the drive pinion's lay 1.754 mm
+    below it before the placement), and the report section says so."""
+    text = DESIGN_11x25.format(sigma="106.111", m="10.144", b="20.500", beta="10.314", rc="100.52")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        spec = parse_design(text)
+        blank = blank_from_design(spec)
+        setups = fm.setup_flanks(spec, blank)
+    checks = root_cone_checks(setups)
+    assert all(not r.below and r.lowest > -1e-3 for r in checks.values())
+    st = setups[(Member.PINION, Side.CONCAVE)]
+    assert "synthesis" in st.source
+    got = checks[(Member.PINION, Side.CONCAVE)]
+    assert np.max(np.abs(brute_root(st.flank, got.R[[0, 10]]) - got.height[[0, 10]])) < 1e-5   # as above
