@@ -5,16 +5,21 @@ is a contact at all.
 A system is coded as in :func:`spiralbevel.meshing.tca_edge_solve.corner_split`: member 0 with an edge index
 ``k1 + a K + b`` past the pinion's ``k1`` boundaries is the corner where boundary a meets boundary b (both numbered over
 the pinion's boundaries, then the gear's; ``K = k1 + k2``); any other row is the edge system of boundary ``edge`` of
-``member``. The screen replaces a few dozen numpy calls on arrays of a handful of rows by one compiled loop.
+``member``. The screen replaces a few dozen numpy calls on arrays of a handful of rows by one compiled loop;
+:func:`edge_try` runs the Newton of the systems, their margins, TE and flank tests and the screen in one call (surfaces
+with compiled jets and margins whose ``contains`` is "every margin >= -tol").
 """
 
 from __future__ import annotations
 
 import math
 
-from .jit import kernel
+import numpy as np
 
-__all__ = ["screen", "accept"]
+from .jit import kernel
+from .tca_edge import N_MARGINS, edge_newton_jets, margins
+
+__all__ = ["screen", "accept", "edge_try"]
 
 
 @kernel
@@ -114,3 +119,88 @@ def accept(ok, te, ii, jj, xs, floor, te_edge, x_edge, last, new, win):
     for a in range(ok.shape[0]):
         if new[a] and last[ii[a], jj[a]] == a:
             win[a] = True
+
+
+@kernel
+def edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, h, tol, max_iter, rcond, screen_it, tep,
+             phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te, conv, ndot, corner, ma, ea, mb, eb, good,
+             ok, new, win):
+    """Solve and screen ``m`` edge/corner systems in one compiled call: the Newton of
+    :func:`~spiralbevel._core.tca_edge.edge_newton_jets` on ``x (m, 5)`` in place, then (``screen_it`` != 0) all
+    margins of both points, the TE, the flank tests and :func:`screen`.
+
+    Parameters
+    ----------
+    kinds : (6,) int
+        Jet kind, margin kind and "margins share the jet" flag of the pinion, then of the gear.
+    p1, mp1, p2, mp2 : float arrays
+        Jet and margin parameters of the pinion and the gear.
+    ctol : (2,) float
+        Per member: ``contains(q)`` is "every margin >= -ctol" (NaN fails).
+    c1, s1 : (m,) float
+        cos, sin of the effective pinion rotations.
+    x : (m, 5) float
+        Starts, solutions on return.
+    member, edge : (m,) int
+        The systems in the code of :func:`screen` (corner rows: member 0, edge ``k1 + a K + b``; here k1 = k2 =
+        N_MARGINS).
+    d, M2, h, tol, max_iter, rcond :
+        As :func:`~spiralbevel._core.tca_edge.edge_newton_jets`.
+    screen_it : int
+        0: the Newton alone (outputs ``conv``, ``ndot``); else everything below.
+    tep : (6,) float
+        drive sign, phi2 of the mean point (rad), ratio z1/z2, phi1 of the mean point (rad), z2, and |TE| limit (rad):
+        TE = drive (-(phi2_eff + 2 pi k / z2 - phi2_mean) - ratio (phi1 - phi1_mean)).
+    phi1 : (n,) float, rad
+    pairs : (P,) float
+        Tooth pair numbers k.
+    ii, jj, floor, te_edge, x_edge, last :
+        As :func:`screen` and :func:`accept`.
+    G0, G1 : (m, 4) float
+        Output: all margins of the pinion and gear points.
+    te : (m,) float
+        Output: TE of the solutions (rad).
+    conv, ndot, corner, ma, ea, mb, eb, good, ok, new, win :
+        Output, as :func:`screen` (``conv``, ``ndot``: as the Newton returns them).
+    """
+    m = x.shape[0]
+    N = N_MARGINS
+    K = 2 * N
+    ed = np.empty(m, np.int64)
+    ed2 = np.empty(m, np.int64)
+    for i in range(m):  # corner rows: boundaries a, b numbered over both members (screen's code)
+        c = edge[i] - N
+        if member[i] == 0 and c >= 0:
+            ed[i] = c // K
+            ed2[i] = c % K
+        else:
+            ed[i] = edge[i]
+            ed2[i] = -1
+    cv, nd, _ = edge_newton_jets(kinds[0], p1, kinds[1], mp1, kinds[2] != 0, kinds[3], p2, kinds[4], mp2,
+                                 kinds[5] != 0, c1, s1, x, member, ed, ed2, d, M2, h, tol, max_iter, rcond)
+    for i in range(m):
+        conv[i] = cv[i]
+        ndot[i] = nd[i]
+    if screen_it == 0:
+        return
+    S = np.empty((3, 6))
+    dg = np.empty((N, 2))
+    C0 = np.empty(m, np.bool_)
+    C1 = np.empty(m, np.bool_)
+    for i in range(m):
+        margins(kinds[1], mp1, x[i, 0], x[i, 1], S, G0[i], dg)
+        margins(kinds[4], mp2, x[i, 2], x[i, 3], S, G1[i], dg)
+        in0 = conv[i]
+        in1 = conv[i]
+        for e in range(N):
+            if not G0[i, e] >= -ctol[0]:
+                in0 = False
+            if not G1[i, e] >= -ctol[1]:
+                in1 = False
+        C0[i] = in0
+        C1[i] = in1
+        # TE in the operation order of meshing.tca (gear_angle, then the TE of the pair)
+        phi2 = x[i, 4] + 2 * math.pi * pairs[jj[i]] / tep[4]
+        te[i] = tep[0] * (-(phi2 - tep[1]) - tep[2] * (phi1[ii[i]] - tep[3]))
+    screen(G0, G1, member, edge, np.int64(N), np.int64(K), conv, ndot, te, tep[5], 1e-9, C0, C1, ii, jj, x, floor,
+           te_edge, x_edge, last, corner, ma, ea, mb, eb, good, ok, new, win)

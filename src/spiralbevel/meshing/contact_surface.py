@@ -149,7 +149,9 @@ class NormalDeviation:
     Notes
     -----
     r'_i = r_i + w_i n + w n_i; n' = unit(r'_0 x r'_1) oriented like n. The normal needs the base's first
-    derivatives; the derivatives of n' for the TCA Jacobian are taken by central differences.
+    derivatives; the derivatives of n' for the TCA Jacobian are taken by central differences. With a
+    :func:`quadratic_crowning` of a log-spiral flank the surface has a compiled ``jet`` (the same
+    expressions and differences, :mod:`spiralbevel._core.normal_deviation_jet`), so that TCA runs wholly compiled.
     """
 
     def __init__(self, base, deviation, fd_step=None):
@@ -164,6 +166,21 @@ class NormalDeviation:
             self.boundary_margins, self.boundary_names = base.boundary_margins, base.boundary_names
         if getattr(base, "boundary_jet", None) is not None:
             self.boundary_jet = base.boundary_jet  # the margins are the base's (parameters unchanged)
+
+    @property
+    def jet(self):
+        """``(kind, prm)`` of the compiled jet (:mod:`spiralbevel._core.normal_deviation_jet`) where the base is a
+        log-spiral flank with a compiled jet and the deviation a :func:`quadratic_crowning` (``deviation.quadratic``),
+        else None (numpy)."""
+        base = getattr(self.base, "jet", None)
+        quad = getattr(self.deviation, "quadratic", None)
+        if base is None or quad is None or int(base[0]) != 0:  # LOGSPIRAL of _core.jets
+            return None
+        from .._core import normal_deviation_jet as _nd  # numba stays off the import path of the CLI
+
+        from .._core.jets import NORMAL_QUADRATIC
+
+        return NORMAL_QUADRATIC, _nd.parameters(base[0], base[1], quad[0], quad[1], self.fd_step)
 
     def evaluate(self, params):
         r, n, dr, dn = surface_derivatives(self.base, params)
@@ -202,4 +219,5 @@ def quadratic_crowning(center, coeffs):
         g = -2.0 * np.stack([c00 * d[..., 0] + c01 * d[..., 1], c01 * d[..., 0] + c11 * d[..., 1]], -1)
         return w, g
 
+    deviation.quadratic = (c.copy(), (c00, c01, c11))  # read by NormalDeviation.jet
     return deviation

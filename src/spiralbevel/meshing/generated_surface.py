@@ -66,6 +66,13 @@ class GeneratedSurface:
         return None if prm is None else (1, prm)
 
     @property
+    def contains_margin_tol(self):
+        """``EDGE_TOL``: the margin part of :meth:`contains` is "every compiled margin (``boundary_jet``) >= -EDGE_TOL";
+        None for a per-system offset law (no compiled margins). (:meth:`contains` also tests :meth:`on_sheet`, which
+        the compiled edge screen does not: TCA screens such surfaces by the separate steps.)"""
+        return None if self._prm() is None else EDGE_TOL
+
+    @property
     def boundary_jet(self):
         """``(kind, prm)`` of the compiled boundary margins with their gradients
         (:func:`spiralbevel._core.tca_edge.margins`, kind ``MARGIN_GENERATED``; the same margins as

@@ -19,15 +19,16 @@ Algorithm (all numpy, batched):
 
 Speed (bench/bench_tca.py): the Newton iterations are compiled (:mod:`spiralbevel._core.tca_newton`: LU steps where the
 system is provably regular, the minimum-norm SVD step only on a contact line; flanks with a compiled jet, the log-spiral
-and the face-milled generated flank, are evaluated inside the compiled loop), the path tangents come from the Jacobians
-of the last Newton iterations, one continuation level (+-T/2) feeds a quintic predictor for the outer positions,
-positions beyond a node the continuation could not reach are not solved, and systems that stop converging are dropped at
-the first iteration that does not halve their residual (continuation nodes after two); the generated flanks give
-analytic derivatives (:mod:`spiralbevel._core.generation_blade_jet`). The edge contacts (:mod:`.tca_edge`: compiled
-margins and Newton, :mod:`spiralbevel._core.tca_edge`; the screen and acceptance of their solutions,
-:mod:`spiralbevel._core.tca_edge_screen`), the path predictor (:mod:`spiralbevel._core.tca_predict`), the line-contact
-test and the transfer iteration (:mod:`spiralbevel._core.tca_transfer`) are compiled as well; what remains in Python is
-the orchestration below.
+flank, the face-milled generated flank and the log-spiral flank crowned by a quadratic normal deviation, are evaluated
+inside the compiled loop), the path tangents come from the Jacobians of the last Newton iterations, one continuation
+level (+-T/2) feeds a quintic predictor for the outer positions, positions beyond a node the continuation could not
+reach are not solved, and systems that stop converging are dropped at the first iteration that does not halve their
+residual (continuation nodes after two); the generated flanks give analytic derivatives
+(:mod:`spiralbevel._core.generation_blade_jet`). The edge contacts (:mod:`.tca_edge`: compiled margins and Newton,
+:mod:`spiralbevel._core.tca_edge`; the screen and acceptance of their solutions,
+:mod:`spiralbevel._core.tca_edge_screen`, which solves and screens each batch in one call), the path predictor
+(:mod:`spiralbevel._core.tca_predict`), the line-contact test and the transfer iteration
+(:mod:`spiralbevel._core.tca_transfer`) are compiled as well; what remains in Python is the orchestration below.
 """
 
 from __future__ import annotations
@@ -325,7 +326,7 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
             return drive * (-(prob.gear_angle(p2, pairs[j]) - phi2_mean) - ratio * (phi1[i] - phi1_mean))
 
         x_edge, te_edge, labels = edge_stage(prob, x2, sp2, te2, te_of, phi1, pairs, tol=min(tol, 1e-11),
-                                              te_tie=te_tie)
+                                              te_tie=te_tie, te_frame=(drive, phi2_mean, phi1_mean))
     else:
         x_edge, te_edge, labels = np.full((n, P, 5), np.nan), np.full((n, P), np.nan), {}
     has_edge = np.isfinite(te_edge)

@@ -30,7 +30,7 @@ import numpy as np
 
 from .._core import tca_edge_screen as _ks
 from .tca_edge_solve import _all_margins, corner_index, corner_split, margins_of, solve_edge_contacts  # noqa: F401
-from .tca_edge_solve import _setup
+from .tca_edge_solve import _H_TAU, _RCOND, _setup, compiled_args
 
 __all__ = ["solve_edge_contacts", "edge_stage", "corner_split", "corner_index"]
 
@@ -45,7 +45,7 @@ def _best_of_others(te):
     return np.where(np.arange(P)[None, :] == first[:, None], top[:, -2:-1], top[:, -1:])
 
 
-def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_tie=1e-11):
+def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_tie=1e-11, te_frame=None):
     """Edge contacts of every tooth pair whose surface contact leaves a real flank, and of the positions next to
     them where the surface contact is lost altogether.
 
@@ -67,6 +67,10 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         Tolerance of the edge solves.
     te_tie : float, rad
         TE differences below this are ties (a pair within te_tie of the best real contact may still lead).
+    te_frame : (drive, phi2_mean, phi1_mean), optional
+        The TE of ``te_of`` as numbers, TE = drive (-(phi2 - phi2_mean) - ratio (phi1 - phi1_mean)) with phi2 the
+        gear rotation of the pair (rad): given, batches of surfaces with compiled jets and margins are solved and
+        screened in one compiled call (:func:`spiralbevel._core.tca_edge_screen.edge_try`).
 
     Returns
     -------
@@ -113,6 +117,15 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     if not all(names):
         return x_edge, te_edge, label
     _, k1, K, _, _ = _setup(prob)  # boundaries of the pinion, of both members
+    # the whole solve and screen of a batch in one compiled call where both surfaces have compiled jets and margins
+    # and a margin test as ``contains``, and the TE's frame is given
+    fast = compiled_args(prob)
+    if fast is not None and (te_frame is None or min(fast[5]) < 0):
+        fast = None
+    if fast is not None:
+        d_, M2_, _ = prob._const
+        tep = np.array([te_frame[0], te_frame[1], prob.ratio, te_frame[2], prob.z2, np.pi / prob.z2], float)
+        phi1c, pairs_f = np.ascontiguousarray(phi1, float), np.ascontiguousarray(pairs, float)
 
     def constraints(mem, ee):
         """The boundaries (member, index) a system puts its points on: one for an edge, two for a corner."""
@@ -129,37 +142,48 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         if not len(ii):
             return np.zeros(0, bool)
         phi_eff = phi1[ii] + pairs[jj] * T1
-        xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
-        gg = [np.ascontiguousarray(margins_of(prob, m, xs[:, 2 * m:2 * m + 2]), float) for m in (0, 1)]
-        with np.errstate(invalid="ignore"):
-            te = np.ascontiguousarray(te_of(xs[:, 4], ii, jj), float)
-        # which boundaries each system holds its points on (a corner: two), whether each point lies on the rest of
-        # its boundaries (margins >= -1e-9 but the held ones; NaN fails) or, held on none, on the real flank, and
-        # whether the solution is a contact (converged, opposed normals, |TE| below half a gear pitch); then the
-        # solutions that lead their pair's best contact so far: compiled (spiralbevel._core.tca_edge_screen)
         k = len(ii)
-        conv = np.array(conv, bool)
-        ic = np.flatnonzero(conv)
-        if ic.size:
-            # a solution whose point (held on a boundary or not) lies on a part of a flank cut away past a limit line
-            # of generation (the surfaces' ``on_sheet``) is no contact of the real teeth
-            conv[ic] = surface_on_sheet(surfs[0], xs[ic, 0:2]) & surface_on_sheet(surfs[1], xs[ic, 2:4])
-        C = [np.zeros(k, bool), np.zeros(k, bool)]
-        ic = np.flatnonzero(conv)
-        if ic.size:
-            for m in (0, 1):
-                if hasattr(surfs[m], "on_sheet"):    # contains: the margins and on_sheet, which conv holds already
-                    with np.errstate(invalid="ignore"):
-                        C[m][ic] = np.all(gg[m][ic] >= -EDGE_TOL, axis=1)
-                else:
-                    C[m][ic] = surface_contains(surfs[m], xs[ic, 2 * m:2 * m + 2])
         corner, good, ok, new, win = (np.empty(k, bool) for _ in range(5))
         ma, ea, mb, eb = (np.empty(k, np.int64) for _ in range(4))
         mem, ee = np.ascontiguousarray(mem, np.int64), np.ascontiguousarray(ee, np.int64)
-        _ks.screen(gg[0], gg[1], mem, ee, k1, K, conv, np.ascontiguousarray(ndot, float), te, np.pi / prob.z2, 1e-9,
-                   C[0], C[1], np.ascontiguousarray(ii, np.int64), np.ascontiguousarray(jj, np.int64),
-                   np.ascontiguousarray(xs, float), floor, te_edge, x_edge, last, corner, ma, ea, mb, eb, good, ok, new,
-                   win)
+        ii, jj = np.ascontiguousarray(ii, np.int64), np.ascontiguousarray(jj, np.int64)
+        if fast is not None:
+            # solve, margins, TE, flank tests and screen in one compiled call
+            kinds, p1, mp1, p2, mp2, ctol = fast
+            xs = np.array(x0, float, order="C").reshape(-1, 5)
+            G0, G1, te = np.empty((k, 4)), np.empty((k, 4)), np.empty(k)
+            conv, ndot = np.empty(k, bool), np.empty(k)
+            _ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, np.cos(phi_eff), np.sin(phi_eff), xs, mem, ee, d_, M2_,
+                         _H_TAU, tol, 30, _RCOND, 1, tep, phi1c, pairs_f, ii, jj, floor, te_edge, x_edge, last, G0, G1,
+                         te, conv, ndot, corner, ma, ea, mb, eb, good, ok, new, win)
+            gg = (G0, G1)
+        else:
+            xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
+            gg = [np.ascontiguousarray(margins_of(prob, m, xs[:, 2 * m:2 * m + 2]), float) for m in (0, 1)]
+            with np.errstate(invalid="ignore"):
+                te = np.ascontiguousarray(te_of(xs[:, 4], ii, jj), float)
+            # which boundaries each system holds its points on (a corner: two), whether each point lies on the rest
+            # of its boundaries (margins >= -1e-9 but the held ones; NaN fails) or, held on none, on the real flank,
+            # and whether the solution is a contact (converged, opposed normals, |TE| below half a gear pitch); then
+            # the solutions that lead their pair's best contact so far: compiled (spiralbevel._core.tca_edge_screen)
+            conv = np.array(conv, bool)
+            ic = np.flatnonzero(conv)
+            if ic.size:
+                # a solution whose point (held on a boundary or not) lies on a part of a flank cut away past a limit
+                # line of generation (the surfaces' ``on_sheet``) is no contact of the real teeth
+                conv[ic] = surface_on_sheet(surfs[0], xs[ic, 0:2]) & surface_on_sheet(surfs[1], xs[ic, 2:4])
+            C = [np.zeros(k, bool), np.zeros(k, bool)]
+            ic = np.flatnonzero(conv)
+            if ic.size:
+                for m in (0, 1):
+                    if hasattr(surfs[m], "on_sheet"):    # contains: the margins and on_sheet, which conv holds already
+                        with np.errstate(invalid="ignore"):
+                            C[m][ic] = np.all(gg[m][ic] >= -EDGE_TOL, axis=1)
+                    else:
+                        C[m][ic] = surface_contains(surfs[m], xs[ic, 2 * m:2 * m + 2])
+            _ks.screen(gg[0], gg[1], mem, ee, k1, K, conv, np.ascontiguousarray(ndot, float), te, np.pi / prob.z2,
+                       1e-9, C[0], C[1], ii, jj, np.ascontiguousarray(xs, float), floor, te_edge, x_edge, last, corner,
+                       ma, ea, mb, eb, good, ok, new, win)
 
         def cons(a):
             """The boundaries (member, index) system a holds its points on."""

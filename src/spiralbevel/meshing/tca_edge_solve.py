@@ -9,6 +9,7 @@ import numpy as np
 
 from .._core import tca_batch as _b
 from .._core import tca_edge as _ke
+from .._core import tca_edge_screen as _ks
 from .._core.jets import GENERATED
 from .contact_surface import surface_derivatives
 
@@ -54,6 +55,41 @@ def _setup(prob):
         s = (b, k1, max(1, k1 + k2), compiled, shares)
         prob._edge_setup = s
     return s
+
+
+def compiled_args(prob):
+    """Arguments of :func:`spiralbevel._core.tca_edge_screen.edge_try` fixed by the problem (kept on it): the kinds
+    (6,), the jet and margin parameters of both members and the tolerances (2,) of their ``contains`` as a margin test
+    (-1 where ``contains`` is no such test); None where the edge Newton does not run entirely in compiled code."""
+    s = prob.__dict__.get("_edge_args")
+    if s is None:
+        (b1, b2), _, _, compiled, (sh1, sh2) = _setup(prob)
+        if not compiled:
+            s = ()
+        else:
+            (k1, p1), (k2, p2) = prob._jets
+            # a surface with a limit-line test (``on_sheet``, part of its ``contains``) is screened by the separate
+            # steps, which apply it: the compiled screen tests the margins alone
+            ct = [None if hasattr(sf, "on_sheet") else getattr(sf, "contains_margin_tol", None)
+                  for sf in (prob.pinion, prob.gear)]
+            s = (np.array([k1, b1[0], int(sh1), k2, b2[0], int(sh2)], np.int64), np.ascontiguousarray(p1, float),
+                 b1[1], np.ascontiguousarray(p2, float), b2[1],
+                 np.array([-1.0 if t is None else float(t) for t in ct]))
+        prob._edge_args = s
+    return s or None
+
+
+#: placeholders of the screening arguments of ``edge_try`` when it only solves (``screen_it`` 0)
+_NO_SCREEN = None
+
+
+def _no_screen():
+    global _NO_SCREEN
+    if _NO_SCREEN is None:
+        i0, f0 = np.zeros(0, np.int64), np.zeros(0)
+        _NO_SCREEN = (np.zeros(6), f0, f0, i0, i0, np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0, 5)),
+                      np.zeros((0, 0), np.int64), np.zeros((0, 4)), np.zeros((0, 4)), f0)
+    return _NO_SCREEN
 
 
 def margins_of(prob, member, q):
@@ -203,15 +239,17 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
     (b1, b2), k1, K, compiled, (sh1, sh2) = _setup(prob)
     if compiled:
         # a corner row codes boundaries a, b (numbered over both members) as k1 + a K + b (corner_split); with
-        # N = k1 = k2 boundaries per member, the kernel's code m N + e of a boundary is that number itself
-        c = edge - k1
-        corner = (member == 0) & (c >= 0)
-        edge2 = np.where(corner, c % K, -1)
-        edge = np.where(corner, c // K, edge)
-        (k1, p1), (k2, p2) = prob._jets
+        # N = k1 = k2 boundaries per member, the kernel's code m N + e of a boundary is that number itself. The
+        # Newton runs through edge_try (its solve alone): one compiled entry point for solving and screening
+        kinds, p1, mp1, p2, mp2, ctol = compiled_args(prob)
         d, M2, _ = prob._const
-        conv, ndot, _ = _ke.edge_newton_jets(k1, p1, b1[0], b1[1], sh1, k2, p2, b2[0], b2[1], sh2, c1, s1, x,
-                                             member, edge, edge2, d, M2, _H_TAU, tol, max_iter, _RCOND)
+        m = len(x)
+        conv, ndot = np.empty(m, bool), np.empty(m)
+        tep, phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te = _no_screen()
+        b0, i0 = np.zeros(0, bool), np.zeros(0, np.int64)
+        _ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, _H_TAU, tol, int(max_iter), _RCOND,
+                     0, tep, phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te, conv, ndot, b0, i0, i0, i0,
+                     i0, b0, b0, b0, b0)
         return x, conv, ndot
     corner, ma, ea, mb, eb = corner_split(prob, member, edge)
     cols = np.where(corner[:, None], np.stack([ma, ea, mb, eb], 1), -1)

@@ -209,6 +209,13 @@ class SumDeviation:
     def __init__(self, *parts):
         self.parts = parts
 
+    @property
+    def quadratic(self):
+        """``(centre, coefficients)`` when the sum is one
+        :func:`~spiralbevel.meshing.contact_surface.quadratic_crowning` (0 + w is w: the same values), else None;
+        read by ``NormalDeviation.jet`` for the compiled crowned flank."""
+        return getattr(self.parts[0], "quadratic", None) if len(self.parts) == 1 else None
+
     def __call__(self, params):
         w, g = 0.0, 0.0
         for p in self.parts:
