@@ -6,7 +6,9 @@ frame over the whole generating roll, no equation of meshing, no envelope).
 26/61 at beta 3.6 deg (bench_robustness.py 100 2, design 31): both pinion sides synthesized, the drive (concave)
 side first against the gear; the first coast (convex) candidate that keeps the bearing inside crosses the concave
 side's cutter near the toe root, so that even at 0.2 of its derived point width (the floor of the refit) the concave
-cutter's opposite blade cuts into the convex flank; the rule takes a later coast candidate, for which it does not.
+cutter's opposite blade cuts into the convex flank. The drive side's settings put that cutter's tip plane 2.14 mm below
+the root cone, and measured from the convex flank's root edge (slot_intrusion.py) its opposite blade cuts that flank
+whatever the coast candidate: the rule then has no candidate to prefer here.
 """
 
 import importlib.util
@@ -15,6 +17,7 @@ import warnings
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from spiralbevel.conventions import Member, Side
@@ -90,34 +93,44 @@ def test_rejected_candidate_closes_the_slot(without_rule):
     assert _tsc._swept_penetration(blank, _at_floor(setups, Side.CONCAVE), Member.PINION, Side.CONCAVE) > 0.1
 
 
-def test_default_pair_fits_its_tooth_spaces(without_rule):
-    """With the rule every cutter of the default pair fits (the check, after the refit), the coast side is another
-    candidate than without the rule, the drive side the same; at the floor width the brute-force sweep finds the
-    slot open on both pinion sides (measured -0.35 mm concave, -2.05 mm convex: clearance)."""
+def test_default_pair_fits_its_tooth_spaces_but_the_drive_cutter(without_rule):
+    """With the rule the drive side is the same candidate as without it; the coast (convex) cutter and the gear's
+    fit (the check, after the refit), and at the floor width the brute-force sweep finds the slot open on the convex
+    side (measured -2.05 mm: clearance). The drive (concave) side's settings put
+    the cutter's tip plane 2.14 mm below the root cone: its opposite blade, below the convex flank's root, cuts that
+    flank's root edge and fillet at every point width (the check and the sweep, over the flank's generating roll:
+    0.399 mm at the floor width at the toe, 0.02 mm apart as in tests/gearset/test_slot_check.py), which no coast
+    candidate changes: with the drive side's cut measured from the convex flank's root edge (a check that once saw
+    the slot open here), every coast candidate leaves that space closed, and the rule has nothing to rank."""
     blank, setups = _develop()
-    for k, res in sc.slot_checks(blank, setups).items():
-        assert not isinstance(res, Exception) and res.fits, k
+    checks = sc.slot_checks(blank, setups)
+    for k, res in checks.items():
+        assert not isinstance(res, Exception) and res.fits == (k != (Member.PINION, Side.CONCAVE)), k
     _, old = without_rule
     assert setups[(Member.PINION, Side.CONCAVE)].settings == old[(Member.PINION, Side.CONCAVE)].settings
-    assert setups[(Member.PINION, Side.CONVEX)].settings != old[(Member.PINION, Side.CONVEX)].settings
-    for s in PINION_SIDES:
-        assert _tsc._swept_penetration(blank, _at_floor(setups, s), Member.PINION, s) < 0.0
+    assert _tsc._swept_penetration(blank, _at_floor(setups, Side.CONVEX), Member.PINION, Side.CONVEX) < 0.0
+    floor = _at_floor(setups, Side.CONCAVE)
+    res = sc.slot_fit(blank, floor, Member.PINION, Side.CONCAVE)
+    brute = _tsc._swept_penetration(blank, floor, Member.PINION, Side.CONCAVE)
+    assert res.tip_height < -2.0 and res.intrusion > 0.1 and abs(res.intrusion - brute) < 0.02
 
 
 def test_clearance_side_does_not_decide_the_fit(without_rule):
     """A single-sided pinion blade (docs/report.md, "Spread blades or single-sided blades?") has its clearance corner
     where the spread-blade model has the opposite blade's tip, with a clearance side of the blade designer's choosing.
     The brute-force sweep at the floor width, with the clearance side at the convex flank's blade angle and turned
-    by -5 deg, finds the same collision (measured 0.352 and 0.355 mm, at the convex flank's root edge; the check's own
-    envelope gives 0.037 and -0.619 mm): the tip corner decides, not the clearance side. 0.03 mm: the sweep's points
-    lie ~0.05 mm apart and the two runs pick their face station independently."""
+    by -5 deg, finds a collision with both (measured 0.399 and 0.356 mm at the face station where the check finds the
+    deepest cut, at the convex flank's root edge and fillet): the tip corner, which runs below the convex flank's
+    root, decides that the blade cuts; the clearance side changes only how deep (by 0.04 mm here)."""
     blank, setups = without_rule
     st = _at_floor(setups, Side.CONCAVE)
     b = st[(Member.PINION, Side.CONVEX)]
     depth = []
+    val, _, _, _, (under, _, _) = sc.intrusion_field(blank, st, Member.PINION, Side.CONCAVE, with_root_edge=True)
+    station = int(np.argmax(np.maximum(val.max(1), under.max(1))))      # the same face station for both runs
     for turn in (0.0, -5.0):
         st[(Member.PINION, Side.CONVEX)] = replace(b, cutter=replace(b.cutter,
                                                                       blade_angle=b.cutter.blade_angle
                                                                       + math.radians(turn)))
-        depth.append(_tsc._swept_penetration(blank, st, Member.PINION, Side.CONCAVE))
-    assert min(depth) > 0.1 and abs(depth[0] - depth[1]) < 0.03
+        depth.append(_tsc._swept_penetration(blank, st, Member.PINION, Side.CONCAVE, station=station))
+    assert min(depth) > 0.3
