@@ -20,9 +20,6 @@ __all__ = ["SLOT_FLOOR", "slot_closed"]
 #: narrowest point width, as a fraction of the derived one, that the point-width refit tries
 #: (``slot_check._largest_fitting_width``)
 SLOT_FLOOR = 0.2
-#: depth (mm) of a side's cutter tip plane below the root cone from which its closed slot is laid to its own settings
-#: (``slot_check``'s message says so), not to the candidate of the other side: the root-cone acceptance of a design
-_ROOT_TOL_MM = 0.01
 
 
 def slot_closed(blank, pinion_setups, floors) -> bool:
@@ -40,10 +37,7 @@ def slot_closed(blank, pinion_setups, floors) -> bool:
     Returns
     -------
     bool
-        True also when the check cannot be computed for a side (the developed pair would miss the check); not for a
-        side whose cutter's tip plane lies more than 0.01 mm below the root cone (its opposite blade then runs below
-        the other flank's root and cuts its root edge from below at every point width, whatever that flank: the
-        check reports that side and names its settings).
+        True also when the check cannot be computed for a side (the developed pair would miss the check).
 
     Notes
     -----
@@ -58,10 +52,8 @@ def slot_closed(blank, pinion_setups, floors) -> bool:
         floor = min(float(floors[side]), 1.0)
         tol = SLOT_TOL_MM if floor >= 1.0 else SLOT_FIT_MM
         try:
-            res = slot_fit(blank, setups, Member.PINION, side, floor * float(pinion_setups[side].cutter.point_width))
-            # a side whose own settings put its cutter's tip plane below the root cone cuts the other flank's root
-            # edge from below whatever that flank is: its closed slot ranks no candidate of the other side lower
-            if res.intrusion > tol and res.tip_height >= -_ROOT_TOL_MM:
+            if slot_fit(blank, setups, Member.PINION, side,
+                        floor * float(pinion_setups[side].cutter.point_width)).intrusion > tol:
                 return True
         except (GeometryError, DesignError):
             return True
