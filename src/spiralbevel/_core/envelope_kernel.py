@@ -120,7 +120,8 @@ def envelope_points(r1, n1, guess, branch, gamma1, shaft_angle, ratio, tol):
     shape = r1.shape[:-1]
     r = np.ascontiguousarray(r1, dtype=np.float64).reshape(-1, 3)
     nrm = np.ascontiguousarray(n1, dtype=np.float64).reshape(-1, 3)
-    g = np.ascontiguousarray(np.broadcast_to(np.asarray(guess, np.float64), shape)).reshape(-1)
+    # a copy: a read-only broadcast view would compile the kernel a second time (_core/jit.py, one signature)
+    g = np.array(np.broadcast_to(np.asarray(guess, np.float64), shape)).reshape(-1)
     n = r.shape[0]
     phi, res = np.empty(n), np.empty(n)
     exists, conv = np.empty(n, np.bool_), np.empty(n, np.bool_)

@@ -40,9 +40,19 @@ rules for kernels:
   ``np.all(np.isfinite(J))`` and above all ``np.linalg`` (``lstsq``: about 2 s). A ``for`` loop over the few
   entries of a kernel's small arrays costs nothing to compile; a rarely taken LAPACK branch can call back into
   Python (``numba.objmode``, see ``settings_fit._lstsq``).
-* Leaving out the CPython and cfunc wrappers of callee-only kernels saved about 3 %; the optimisation level
-  ``NUMBA_OPT=1`` about 15 % (it is global to a process, so it would change a user's own numba code too): both left
-  at numba's defaults.
+* Leaving out the CPython and cfunc wrappers of callee-only kernels saved about 3 %: left at numba's default. LLVM
+  optimisation level 1 instead of numba's 3 (process-wide ``NUMBA_OPT=1``: about 15 % less compile time; for our
+  kernels' compiles only, through a pipeline class that sets ``numba.config.OPT`` around them: about 10 % less LLVM
+  time, 5 % less compile time) made the face-milled TCA about 10 % slower (three paired runs of
+  ``bench/bench_tca.py``); level 0 halves LLVM time and makes TCA and generation 4-5x slower: left at numba's default.
+* Where the cold time goes (the CMC example, empty cache, one process): numba's type inference and lowering are
+  nearly all of the compile; LLVM is about half of it, half optimising and half emitting code. Each top-level kernel's
+  module links the IR of every kernel it calls, so shared callees (the flank jets, ``blade_jet_u``) are optimised and
+  emitted again in every top-level kernel: fewer top-level kernels over the same callees is the lever left. A second
+  process compiling the kernels into the same cache while the job runs was measured and not kept: on this 2-core
+  machine it made the cold run slower in wall time at every load measured (43 -> 58 s at load 1.1).
+* Give each kernel one argument signature: a read-only broadcast view and a writable array are two numba types, and
+  compile the kernel twice (the envelope's guess is copied for that reason).
 """
 
 from __future__ import annotations

@@ -208,6 +208,12 @@ class GearSet:
             from .slot_check import slot_report
 
             slot_report(self.design, self.blank, self.setups, flanks)   # each cutter's opposite blade (as the job)
+            from .fillet_top import fillet_top_report
+            from .tca import side_tca
+
+            tca = {n: side_tca(self.blank, self.setups, n, n_positions=self.design.tca.positions)[1]
+                   for n in ("drive", "coast")}
+            fillet_top_report(self.design, self.blank, self.setups, flanks, tca)   # each fillet (as the job)
         return MachineSummary(flanks, machines)
 
     def tca(self, side: str = "drive", misalignment=None, positions: int | None = None):

@@ -45,6 +45,9 @@ def run_facemilled(gs, out, steps, report, summary):
             mark_failed(summary.partial, report["tca"][name], f"TCA, {name} side")
             _tca_checks(report, name, tca_results.get(name), synth, blank.z1)
             iso_contact_ratio(report["tca"][name], blank, name)
+        from .fillet_top import fillet_top_report
+
+        fillet_top_report(spec, blank, setups, report["flanks"], report["tca"])   # each fillet against the mate's tip
         sens, failed = attempt(summary.partial, "misalignment sensitivity", misalignment_sensitivity, blank, setups,
                                "drive", n_positions=n_pos)
         report["tca"]["misalignment_sensitivity"] = failed or sens

@@ -205,8 +205,8 @@ def opposite_blade_grid(blank, setups, member, side, point_width: float | None =
     for _ in range(_REFINE_LEVELS):
         p = gen.evaluate_at(x[..., 0], x[..., 1], x[..., 2], curvature=False).points
         _, h = ol.Rh(p[..., 2], np.hypot(p[..., 0], p[..., 1]))
-        wide = np.nonzero(np.max(np.abs(np.diff(h, axis=1)), axis=0) > limit)[0]
-        if wide.size == 0:
+        wide = [int(k) for k in np.nonzero(np.max(np.abs(np.diff(h, axis=1)), axis=0) > limit)[0]]
+        if not wide:
             break
         mid = [_row(gen, ol, R, 0.5 * (x[0, j, 0] + x[0, j + 1, 0]), (x[:, j, 1:], x[:, j + 1, 1:])) for j in wide]
         rows = [x[:, j] for j in range(x.shape[1])]

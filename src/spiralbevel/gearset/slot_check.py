@@ -73,11 +73,14 @@ def slot_checks(blank, setups) -> dict:
     return out
 
 
-def _point_width_key(spec, member, side) -> str:
+def cutter_key(spec, member, side, name: str) -> str:
+    """Design-file key of cutter quantity ``name`` (``point_width``, ``edge_radius``) of flank (member, side): the
+    flank's own ``face_milling.<member>_<side>.cutter.<name>`` where the design file gives that cutter, else the
+    shared ``face_milling.<name>``."""
     key = f"face_milling.{member.value}_{side.value}"
     if getattr(spec.face_milling, f"{member.value}_{side.value}").cutter is not None:
-        return f"{key}.cutter.point_width"
-    return "face_milling.point_width"
+        return f"{key}.cutter.{name}"
+    return f"face_milling.{name}"
 
 
 def slot_messages(spec, blank, setups, checks) -> dict:
@@ -85,7 +88,7 @@ def slot_messages(spec, blank, setups, checks) -> dict:
     largest point width that fits."""
     out = {}
     for (m, s), res in checks.items():
-        key = _point_width_key(spec, m, s)
+        key = cutter_key(spec, m, s, "point_width")
         if isinstance(res, Exception):
             out[(m, s)] = [f"cutter fit in the slot not checked: {str(res).splitlines()[0]}"]
             continue

@@ -11,7 +11,7 @@ from ..errors import DesignError, GeometryError
 from .slot_blade import _edge_limit, _other
 from .slot_intrusion import SLOT_FIT_MM, slot_fit
 
-__all__ = ["fit_point_widths"]
+__all__ = ["fit_point_widths", "refit_side"]
 
 #: passes of the point-width refit over the four flanks: a refit that regenerates a fillet can make the other side's
 #: opposite flank intrude again (5 of 100 designs of bench/bench_robustness.py, seed 2, e.g. 9/19 and 20/39; all 5 fit
@@ -62,6 +62,46 @@ def _largest_fitting_width(blank, setups, member, side, w0: float) -> float | No
     return float(brentq(room, lo, hi, xtol=1e-3))
 
 
+def refit_side(blank, setups, member, side):
+    """The refit of one flank's derived point width against the other flank of its tooth space, as
+    :func:`fit_point_widths` does it in one pass.
+
+    Parameters
+    ----------
+    blank : BevelBlank
+    setups : {(Member, Side): FlankSetup}
+        At least ``(member, side)`` and the other side of the same member; not modified.
+    member : Member
+    side : Side
+
+    Returns
+    -------
+    (HeadCutter, ToothFlank) or None
+        The cutter with the largest point width that fits (its edge radius reduced to what that width holds, times
+        ``EDGE_RADIUS_FILL``, only when it holds less) and the flank it generates (the same flank object when the
+        edge radius is kept); ``None`` when the cutter fits as it is or no width down to 0.2 of it fits.
+
+    Raises
+    ------
+    GeometryError, DesignError
+        When the intrusion or the flank cannot be computed.
+    """
+    from ..generation.flank import generate_flank
+    from ..machine.default_cutter import EDGE_RADIUS_FILL
+
+    st = setups[(member, side)]
+    if slot_fit(blank, setups, member, side).fits:
+        return None
+    c = st.cutter
+    w = _largest_fitting_width(blank, setups, member, side, c.point_width)
+    if w is None:
+        return None
+    rho = min(c.edge_radius, EDGE_RADIUS_FILL * _edge_limit(w, c.blade_angle))
+    new = dataclasses.replace(c, point_width=w, edge_radius=rho)
+    flank = st.flank if rho == c.edge_radius else generate_flank(new, st.settings, blank, member, side)
+    return new, flank
+
+
 def fit_point_widths(spec, blank, setups, synthesis=None) -> dict:
     """Refit each derived point width whose opposite blade cuts into the opposite flank (module docstring).
 
@@ -79,8 +119,6 @@ def fit_point_widths(spec, blank, setups, synthesis=None) -> dict:
     {(Member, Side): (float, float)}
         (derived, fitted) point width, mm, of each refitted flank.
     """
-    from ..generation.flank import generate_flank
-    from ..machine.default_cutter import EDGE_RADIUS_FILL
     from .facemilled import MEMBERS, PAIR_SIDES, SIDES, FlankSetup
 
     fm = spec.face_milling
@@ -99,21 +137,16 @@ def fit_point_widths(spec, blank, setups, synthesis=None) -> dict:
                         or getattr(fm, f"{m.value}_{s.value}").cutter is not None):
                     continue
                 try:
-                    if slot_fit(blank, setups, m, s).fits:
-                        continue
-                    w = _largest_fitting_width(blank, setups, m, s, st.cutter.point_width)
+                    got = refit_side(blank, setups, m, s)
                 except (GeometryError, DesignError):
                     continue
-                if w is None:
-                    continue                             # nothing fits: the check says so
+                if got is None:
+                    continue                             # fits, or nothing fits: the check says so
+                new, flank = got
+                w = float(new.point_width)
                 c0, src0 = derived.setdefault((m, s), (st.cutter, st.source))
                 c = st.cutter
-                rho = min(c.edge_radius, EDGE_RADIUS_FILL * _edge_limit(w, c.blade_angle))
-                new = dataclasses.replace(c, point_width=w, edge_radius=rho)
-                try:
-                    flank = st.flank if rho == c.edge_radius else generate_flank(new, st.settings, blank, m, s)
-                except GeometryError:
-                    continue
+                rho = new.edge_radius
                 changed = changed or rho != c.edge_radius
                 setups[(m, s)] = FlankSetup(m, s, new, st.settings, flank,
                                             f"{src0}; point width {w:.3f} mm fitted to the tooth space "

@@ -1,0 +1,217 @@
+"""The design check "fillet above the mate's tip" (gearset/fillet_top.py).
+
+Fires: an 11/17 design of the robustness bench (shaft angle 66.8 deg, spiral angle 21.5 deg, module 2.01 mm), whose
+TCA shows edge contacts at the pinion's fillet. Checked two ways other than the check's own comparison: (1) the mate's
+reach brute force in 3-D: each junction point turned about its own axis through a full turn, its depth inside the
+mate's face-cone solid (built from the ISO outer tip point and face angle, not from the mean addendum and the
+dedendum angles the check uses); (2) the tooth contact analysis of the pair finds the edge contact there.
+Does not fire: the bundled face-milled examples.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize_scalar
+
+import spiralbevel as sb
+from spiralbevel.conventions import Member, Side
+from spiralbevel.gearset.fillet_top import CAUSE, fillet_top_checks, fillet_top_messages, mate_top_height
+from spiralbevel.io.design_file import parse_design
+from spiralbevel.job import facemilled as fm
+from spiralbevel.job.blank import blank_from_design
+
+DESIGN_11x17 = """
+title = "11/17 of the robustness bench (bench_robustness.py 40 1, design 33)"
+[gear_set]
+pinion_teeth = 11
+gear_teeth = 17
+shaft_angle = 66.790
+module = 2.013
+face_width = 6.328
+normal_pressure_angle = 20
+mean_spiral_angle = 21.501
+pinion_hand = "LH"
+cutter_radius = 18.37
+[flank]
+kind = "face-milled"
+"""
+
+ALL = [(m, s) for m in (Member.PINION, Member.GEAR) for s in (Side.CONVEX, Side.CONCAVE)]
+
+
+@pytest.fixture(scope="module")
+def small():
+    """The 11/17 design, developed as the job does (default synthesis of the pinion)."""
+    import warnings
+
+    spec = parse_design(DESIGN_11x17)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        blank = blank_from_design(spec)
+        setups = fm.setup_flanks(spec, blank, with_synthesis=True)[0]
+    return spec, blank, setups
+
+
+def _junction_points(flank, n=7):
+    """(n, 3) points (mm, member frame) of the generated junction line at the check's face stations."""
+    ol, gen = flank.outline, flank.generator
+    R = np.linspace(ol.Ri, ol.Re, n)
+    mp = flank.mean_point()
+    xj = flank._locator.junction(R, (mp.theta + np.pi - gen.mp["q"] + mp.psi_c, mp.psi_c))
+    return gen.evaluate_at(np.full(n, gen.cp["u_j"]), xj[:, 1], xj[:, 2], curvature=False).points
+
+
+def _reach(blank, member, p):
+    """Brute force: the largest depth (mm, > 0 inside) of point ``p`` (member frame: axis z from the pitch apex) in
+    the mate's face-cone solid over a full turn of the member about its own axis, the mate turned about its axis
+    in the working position (axes intersecting at the pitch apex, at the shaft angle). The mate's face cone: the
+    line through its ISO outer tip point (outer cone distance Re, outer addendum h_ae) at its face angle delta_a;
+    depth measured normal to that line in the mate's axial section."""
+    if member is Member.PINION:
+        dm, hae, da, Re = float(blank.delta2), float(blank.hae2), float(blank.delta_a2), float(blank.Re2)
+    else:
+        dm, hae, da, Re = float(blank.delta1), float(blank.hae1), float(blank.delta_a1), float(blank.Re1)
+    S = float(blank.Sigma)
+    a = np.array([math.sin(S), 0.0, math.cos(S)])           # the mate's axis: in the x-z plane, Sigma from z
+    tip = np.array([Re * math.cos(dm) - hae * math.sin(dm), Re * math.sin(dm) + hae * math.cos(dm)])
+    d = np.array([math.cos(da), math.sin(da)])
+    r, z = math.hypot(p[0], p[1]), p[2]
+
+    def depth(phi):
+        q = np.array([r * math.cos(phi), r * math.sin(phi), z])
+        za = q @ a
+        ra = np.linalg.norm(q - za * a)
+        v = np.array([za, ra]) - tip
+        return v[0] * d[1] - v[1] * d[0]                       # > 0: below the tip line, inside the mate's blank
+
+    phis = np.linspace(-math.pi, math.pi, 721)
+    k = int(np.argmax([depth(f) for f in phis]))
+    best = minimize_scalar(lambda f: -depth(f), bounds=(phis[k] - 0.01, phis[k] + 0.01), method="bounded",
+                           options={"xatol": 1e-10})
+    return -best.fun
+
+
+@pytest.mark.parametrize("m,s", ALL)
+def test_check_equals_the_mates_reach_by_brute_force(small, m, s):
+    """The check's comparison (junction height minus the mate's top c(R), normal to the pitch generatrix) against the
+    mate's reach found by turning each junction point through a full turn in 3-D: the same point of deepest reach
+    (the plane of the axes), measured normal to the mate's face cone, so the two differ by exactly the factor
+    cos(theta_a) of the face cone's slope against the pitch generatrix. 1e-6 mm: the bounded scalar search's
+    tolerance on the turn angle (1e-10 rad), squared, times radii of some mm, is far below; what is left is the
+    round-off of the ISO dimensions (solved to 1e-9)."""
+    spec, blank, setups = small
+    res = fillet_top_checks(blank, {(m, s): setups[(m, s)]})[(m, s)]
+    p = _junction_points(setups[(m, s)].flank)
+    theta_a = float(blank.delta_a2 - blank.delta2) if m is Member.PINION else float(blank.delta_a1 - blank.delta1)
+    brute = np.array([_reach(blank, m, q) for q in p])
+    np.testing.assert_allclose(brute, (res.junction - res.top) * math.cos(theta_a), atol=1e-6)
+
+
+def test_mate_top_is_the_clearance_at_the_mean_point(small):
+    """c(R_m) is the ISO clearance c for both members (h_fm1 - h_am2 = h_fm2 - h_am1 = c)."""
+    _, blank, _ = small
+    for m in (Member.PINION, Member.GEAR):
+        assert mate_top_height(blank, m, [float(blank.Rm)])[0] == pytest.approx(float(blank.c), abs=1e-9)
+
+
+def test_fires_where_the_tca_shows_the_fillet_edge_contact(small):
+    """On the 11/17 design the check fires on the pinion's convex (coast) flank and not on its concave (drive) flank
+    (junction 0.83-0.90 and 0.64-0.86 mm above the root cone, the gear's tip contact 0.75-0.95 mm), and the TCA (the
+    brute-force-checked edge-contact solve) finds the pinion's fillet edge contact on the coast side and not on the
+    drive side; the message names the cause and the keys to change."""
+    from spiralbevel.gearset.tca import side_tca
+
+    spec, blank, setups = small
+    checks = fillet_top_checks(blank, setups)
+    tca = {name: side_tca(blank, setups, name, n_positions=21)[1] for name in ("drive", "coast")}
+    msgs = fillet_top_messages(spec, blank, checks, tca)
+    assert checks[(Member.PINION, Side.CONVEX)].fires
+    assert not checks[(Member.PINION, Side.CONCAVE)].fires and (Member.PINION, Side.CONCAVE) not in msgs
+    (text,) = msgs[(Member.PINION, Side.CONVEX)]
+    assert text.startswith(CAUSE)
+    for key in ("gear_set.depth.clearance_factor", "gear_set.depth.mean_addendum_factor", "face_milling.edge_radius",
+                "gear_set.normal_pressure_angle"):
+        assert key in text
+    # the plane-of-axes reach is the conservative bound: it flags every flank the start-of-active-flank one does
+    for res in checks.values():
+        assert res.reach_excess >= res.excess
+    seen = {name: any(e["member"] == "pinion" and e["edge"] == "fillet" for e in tca[name]["edge_contacts"])
+            for name in ("drive", "coast")}
+    assert seen == {"coast": True, "drive": False}
+
+
+def _tca(blank, setups):
+    from spiralbevel.gearset.tca import side_tca
+
+    return {name: side_tca(blank, setups, name, n_positions=21)[1] for name in ("drive", "coast")}
+
+
+def _pinion_fillet_contact(tca):
+    """{side: whether the 21-position TCA of that side has an edge contact at the pinion's fillet}."""
+    return {name: any(e["member"] == "pinion" and "fillet" in e["edge"] for e in sec["edge_contacts"])
+            for name, sec in tca.items()}
+
+
+def test_does_not_fire_on_the_iso_sample():
+    """ISO 23509 sample 1 (bundled): no flank's junction above the mate's tip contact (by 0.09 mm and more), and no
+    fillet edge contact in the TCA of either side."""
+    gs = sb.GearSet.from_design("iso23509_sample1")
+    checks = fillet_top_checks(gs.blank, gs.setups)
+    assert len(checks) == 4
+    for res in checks.values():
+        assert not isinstance(res, Exception) and not res.fires, res
+    tca = _tca(gs.blank, gs.setups)
+    assert fillet_top_messages(gs.design, gs.blank, checks, tca) == {}
+    assert _pinion_fillet_contact(tca) == {"drive": False, "coast": False}
+
+
+def test_fires_on_the_synthesized_seed_example():
+    """The bundled synthesized seed-001 pair (23/65, 22.5 deg blades, edge radius 1.31 mm): both pinion junctions lie
+    above the gear's tip contact (0.87-0.94 mm against 0.78-0.86 mm) and the TCA of both sides shows the pinion's
+    fillet edge contact; the gear's junctions stay below the pinion's tip contact."""
+    gs = sb.GearSet.from_design("aviation_23x65_synthesized")
+    checks = fillet_top_checks(gs.blank, gs.setups)
+    pinion = {(Member.PINION, Side.CONVEX), (Member.PINION, Side.CONCAVE)}
+    assert {k for k, r in checks.items() if r.fires} == pinion
+    tca = _tca(gs.blank, gs.setups)
+    assert _pinion_fillet_contact(tca) == {"drive": True, "coast": True}
+    assert set(fillet_top_messages(gs.design, gs.blank, checks, tca)) == pinion
+
+
+def test_report_section_and_design_warning(small):
+    """The job's report step (``fillet_top_report``, after the TCA): each flank's ``fillet_top`` section; a
+    ``DesignWarning`` naming the cause, also in the flank's ``checks``, only where the estimate fires and the TCA
+    shows the edge contact it explains (11/17: the pinion's convex flank; its gear concave flank, also estimated
+    above the pinion's tip contact, +0.33 mm, has no such edge contact in the TCA and is not reported)."""
+    from spiralbevel.errors import DesignWarning
+    from spiralbevel.gearset.fillet_top import fillet_top_report
+
+    spec, blank, setups = small
+    tca = _tca(blank, setups)
+    flanks = {}
+    with pytest.warns(DesignWarning, match="pinion convex: fillet above the mate's tip") as rec:
+        fillet_top_report(spec, blank, setups, flanks, tca)
+    assert sum(CAUSE in str(w.message) for w in rec) == 1
+    for m in ("pinion", "gear"):
+        for s in ("convex", "concave"):
+            sec = flanks[m][s]["fillet_top"]
+            assert len(sec["junction_mm"]) == 7
+            assert sec["reported"] == ((m, s) == ("pinion", "convex"))
+            assert sec["reported"] == any(t.startswith(CAUSE) for t in flanks[m][s].get("checks", []))
+    assert flanks["gear"]["concave"]["fillet_top"]["fires"]
+
+
+def test_a_junction_that_cannot_be_located_is_an_error_not_a_nan(small, monkeypatch):
+    """A junction solve that returns NaN at a station makes the check 'not computed' (an error the report names),
+    never a NaN in the report."""
+    import spiralbevel.gearset.fillet_top as ft
+
+    blank, setups = small[1], small[2]
+    real = ft.junction_height
+    monkeypatch.setattr(ft, "junction_height", lambda flank, n: np.where(np.arange(n) == 2, np.nan, real(flank, n)))
+    checks = fillet_top_checks(blank, setups)
+    assert checks and all(isinstance(v, sb.errors.GeometryError) for v in checks.values())
+    assert "could not be located" in str(next(iter(checks.values())))
