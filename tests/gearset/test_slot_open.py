@@ -8,7 +8,8 @@ side first against the gear; the first coast (convex) candidate that keeps the b
 side's cutter near the toe root, so that even at 0.2 of its derived point width (the floor of the refit) the concave
 cutter's opposite blade cuts into the convex flank. The drive side's settings put that cutter's tip plane 2.14 mm below
 the root cone, and measured from the convex flank's root edge (slot_intrusion.py) its opposite blade cuts that flank
-whatever the coast candidate: the rule then has no candidate to prefer here.
+whatever the coast candidate: the rule then has no candidate to prefer here. The default synthesis therefore puts such
+a root back on the root cone (``pinion_fillet.raise_root``), and with it every cutter of the pair fits.
 """
 
 import importlib.util
@@ -22,7 +23,7 @@ import pytest
 
 from spiralbevel.conventions import Member, Side
 from spiralbevel.gearset import slot_check as sc
-from spiralbevel.gearset import slot_open
+from spiralbevel.gearset import pinion_fillet, slot_open
 from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
 from spiralbevel.job.blank import blank_from_design
@@ -55,8 +56,9 @@ def _develop(monkeypatch=None):
         warnings.simplefilter("ignore")
         spec = parse_design(DESIGN_26X61)
         blank = blank_from_design(spec)
-        if monkeypatch is not None:      # the search without the rule
-            monkeypatch.setattr(slot_open, "slot_closed", lambda *a: False)
+        if monkeypatch is not None:      # the search without the rule and without the root raise
+            monkeypatch.setattr(slot_open, "slot_closed", lambda *a, **k: False)
+            monkeypatch.setattr(pinion_fillet, "raise_root", lambda blank, res: res)
         setups = fm.setup_flanks(spec, blank)
     return blank, setups
 
@@ -93,26 +95,31 @@ def test_rejected_candidate_closes_the_slot(without_rule):
     assert _tsc._swept_penetration(blank, _at_floor(setups, Side.CONCAVE), Member.PINION, Side.CONCAVE) > 0.1
 
 
-def test_default_pair_fits_its_tooth_spaces_but_the_drive_cutter(without_rule):
-    """With the rule the drive side is the same candidate as without it; the coast (convex) cutter and the gear's
-    fit (the check, after the refit), and at the floor width the brute-force sweep finds the slot open on the convex
-    side (measured -2.05 mm: clearance). The drive (concave) side's settings put
-    the cutter's tip plane 2.14 mm below the root cone: its opposite blade, below the convex flank's root, cuts that
-    flank's root edge and fillet at every point width (the check and the sweep, over the flank's generating roll:
-    0.399 mm at the floor width at the toe, 0.02 mm apart as in tests/gearset/test_slot_check.py), which no coast
-    candidate changes: with the drive side's cut measured from the convex flank's root edge (a check that once saw
-    the slot open here), every coast candidate leaves that space closed, and the rule has nothing to rank."""
+def test_default_pair_raises_the_drive_root_and_every_cutter_fits(without_rule):
+    """The default synthesis (the rule and the root raise): the drive side is the same candidate as without them,
+    its settings those of the candidate but the sliding base, moved by the depth at which the candidate cut the root
+    below the root cone (2.14 mm, its root deviation; the blade shortened, ``pinion_fillet.raise_root``). With the
+    root on the root cone the drive cutter's opposite blade no longer runs below the convex flank's root, and after the
+    refit every cutter of the pair fits by the check, and the brute-force sweep agrees (below). This test once asserted the opposite: before the raise, the drive cutter cut the convex flank's root edge
+    and fillet at every point width whatever the coast candidate (0.399 mm at the floor width by the check and the
+    sweep), and the rule had nothing to rank (``test_rejected_candidate_closes_the_slot`` keeps that pair)."""
+    from spiralbevel.generation.basic_settings_solve import root_deviation
+
     blank, setups = _develop()
     checks = sc.slot_checks(blank, setups)
     for k, res in checks.items():
-        assert not isinstance(res, Exception) and res.fits == (k != (Member.PINION, Side.CONCAVE)), k
+        assert not isinstance(res, Exception) and res.fits, k
     _, old = without_rule
-    assert setups[(Member.PINION, Side.CONCAVE)].settings == old[(Member.PINION, Side.CONCAVE)].settings
-    assert _tsc._swept_penetration(blank, _at_floor(setups, Side.CONVEX), Member.PINION, Side.CONVEX) < 0.0
-    floor = _at_floor(setups, Side.CONCAVE)
-    res = sc.slot_fit(blank, floor, Member.PINION, Side.CONCAVE)
-    brute = _tsc._swept_penetration(blank, floor, Member.PINION, Side.CONCAVE)
-    assert res.tip_height < -2.0 and res.intrusion > 0.1 and abs(res.intrusion - brute) < 0.02
+    k = (Member.PINION, Side.CONCAVE)
+    new, raw = setups[k], old[k]
+    depth = max(d for d in root_deviation(raw.flank) if d is not None)
+    assert depth < -2.0 and "root raised onto the root cone" in new.source
+    assert replace(new.settings, sliding_base=raw.settings.sliding_base) == raw.settings
+    assert new.settings.sliding_base - raw.settings.sliding_base == pytest.approx(depth, abs=1e-12)
+    assert abs(checks[k].tip_height) < 0.01
+    # the sweep agrees with the check's fit within 0.02 mm (the first-order measure and the sweep's point spacing,
+    # tests/gearset/test_slot_check.py; measured 0.022 against 0.0025 mm)
+    assert abs(_tsc._swept_penetration(blank, setups, *k) - checks[k].intrusion) < 0.02
 
 
 def test_clearance_side_does_not_decide_the_fit(without_rule):

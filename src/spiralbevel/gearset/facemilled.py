@@ -333,6 +333,9 @@ def _synthesize_sides(sy, blank, setups, syn, refit=None, floors=None):
         if res.pinion_cutter.point_width < pin.cutter.point_width - 1e-9:   # gearset/pinion_fillet.lower_root
             source += (f"; root lowered onto the root cone: blade extended to a point width of "
                        f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
+        if res.pinion_cutter.point_width > pin.cutter.point_width + 1e-9:   # gearset/pinion_fillet.raise_root
+            source += (f"; root raised onto the root cone: blade shortened to a point width of "
+                       f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
         if res.pinion_cutter.edge_radius < pin.cutter.edge_radius:
             source += (f"; edge radius {res.pinion_cutter.edge_radius:.3f} mm refitted to keep the generated fillet "
                        f"below the gear's top (derived {pin.cutter.edge_radius:.3f} mm)")
@@ -392,7 +395,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
 
     Returns (best, tried, last error): best = (positions off the flank, SynthesisResult, free set name) or None.
     """
-    from .pinion_fillet import fit_pinion_edge_radius, lower_root
+    from .pinion_fillet import fit_pinion_edge_radius, lower_root, raise_root
     from .refit_bearing import off_after_refit
     from .slot_open import slot_closed
 
@@ -419,6 +422,8 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
             pinion_settings_hint=pin.settings if hint else None)
         if default:
             _require_near_branch(res, pin)
+        if default and refit and floors is not None and floors[s1] < 1.0:
+            res = raise_root(blank, res)    # a cutter tip plane below the root cone back on it (pinion_fillet.py)
         return res
 
     def judge(res, frac, free, eta=None):
@@ -436,7 +441,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
             off = _CHECK_POSITIONS
         if off == 0 and slot_other is not None and slot_closed(
                 blank, {s1: FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings, res.pinion_flank, ""),
-                        slot_other.side: slot_other}, floors):
+                        slot_other.side: slot_other}, floors, finished=slot_other.side):
             off = SLOT_CLOSED_RANK
         if off == 0 and slot_other is not None and floors[s1] < 1.0:
             off = off_after_refit(blank, res, gear, s1, slot_other)
