@@ -6,10 +6,10 @@ root cone at the toe; the cutter-fit check that measures the opposite blade belo
 flank's side finds no point width down to 0.2 of the derived 6.13 mm that fits (the check once saw 1.58 mm fit there,
 and the refit's smaller edge radius put the contact off the flanks at 19 of 41 positions: the case this test was
 written for). The default synthesis now puts such a root back on the root cone (``pinion_fillet.raise_root``): the
-blade shortened, the point 7.70 mm wide, the width that fits 5.88 mm, which holds the derived edge radius, and the
+blade shortened, the point width kept, the width that fits 5.88 mm, which holds the derived edge radius, and the
 flank and its bearing stay as verified. The search still judges a candidate after the refit it will get
 (``gearset.refit_bearing.off_after_refit``): that path is exercised here with the raised drive cutter's edge radius
-enlarged to what its 7.70 mm point holds, which the 5.88 mm point no longer holds, so that the refit generates the
+enlarged to what its 6.13 mm point holds, which the 5.88 mm point no longer holds, so that the refit generates the
 flank again. The whole 10/54 run is left to the bench.
 """
 
