@@ -100,9 +100,10 @@ def test_default_pair_raises_the_drive_root_and_every_cutter_fits(without_rule):
     its settings those of the candidate but the sliding base, moved by the depth at which the candidate cut the root
     below the root cone (2.14 mm, its root deviation; the blade shortened, ``pinion_fillet.raise_root``). With the
     root on the root cone the drive cutter's opposite blade no longer runs below the convex flank's root, and after the
-    refit every cutter of the pair fits by the check, and the brute-force sweep agrees (below). This test once asserted the opposite: before the raise, the drive cutter cut the convex flank's root edge
-    and fillet at every point width whatever the coast candidate (0.399 mm at the floor width by the check and the
-    sweep), and the rule had nothing to rank (``test_rejected_candidate_closes_the_slot`` keeps that pair)."""
+    refit every cutter of the pair fits by the check, and the brute-force sweep agrees (below). This test once
+    asserted the opposite: before the raise, the drive cutter cut the convex flank's root edge and fillet at every
+    point width whatever the coast candidate (0.399 mm at the floor width by the check and the sweep), and the rule
+    had nothing to rank (``test_rejected_candidate_closes_the_slot`` keeps that pair)."""
     from spiralbevel.generation.basic_settings_solve import root_deviation
 
     blank, setups = _develop()

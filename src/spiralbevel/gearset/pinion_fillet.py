@@ -29,10 +29,10 @@ envelope of the tip plane, moves Delta deeper. The new blade point: radius R_h -
 -1 inner blade), width W - 2 Delta tan(alpha).
 
 The same move with Delta < 0 (:func:`raise_root`, the point width kept: the cutting blade's surface does not depend on
-it, and the cutter-fit refit narrows it from the derived one) shortens the blade: where the synthesis put the pinion's cutter tip
-plane below the root cone (the settings that fix the flank at its mean point say nothing about the depth of the cut;
-on 20/39 at beta 17.4 deg the synthesized drive side's root lies 1.17 mm below the root cone over the whole face), the
-root is put back on the root cone with the blade surface, and so the mean-point fit and the bearing, unchanged. A
+it, and the cutter-fit refit narrows it from the derived one) shortens the blade: where the synthesis put the pinion's
+cutter tip plane below the root cone (the settings that fix the flank at its mean point say nothing about the depth of
+the cut; on 20/39 at beta 17.4 deg the synthesized drive side's root lies 1.17 mm below the root cone over the whole
+face), the root is put back on the root cone with the blade surface, and so the mean-point fit, unchanged. A
 root below the root cone misses the root-cone acceptance of the design (0.01 mm), and the cutter's opposite blade, in
 the same tip plane, runs below the root of the other flank of the tooth space, whatever that flank's settings, and
 cuts its fillet at every point width (:mod:`~spiralbevel.gearset.slot_check`).
