@@ -248,20 +248,16 @@ def _pinion_fillet_contact(tca):
 
 
 def test_does_not_fire_on_the_iso_sample():
-    """ISO 23509 sample 1 (bundled): no fillet edge contact in the TCA of either side, so no warning. The estimate
-    alone: the gear's junctions and the pinion's convex one lie 0.08 mm and more below the mate's tip contact; the
-    pinion's concave one 0.03 mm above it, since its synthesized root, 0.09 mm below the root cone before, lies on the
-    root cone (gearset/root_cone.raise_root), its junction with it (and the wider point keeps the derived edge radius,
-    1.16 mm): a first-order estimate that the TCA does not confirm."""
+    """ISO 23509 sample 1 (bundled): no flank's junction above the mate's tip contact (by 0.02 mm and more), and no
+    fillet edge contact in the TCA of either side. The default synthesis puts the drive (concave) pinion's root, which
+    its settings cut 0.09 mm below the root cone, back on it (``pinion_fillet.raise_root``); that lifts its junction,
+    and the edge radius is reduced (1.160 to 1.039 mm) so that the lift keeps it below the mate's tip contact (measured
+    0.025 mm below; 0.085 mm on the convex flank)."""
     gs = sb.GearSet.from_design("iso23509_sample1")
     checks = fillet_top_checks(gs.blank, gs.setups)
     assert len(checks) == 4
-    for key, res in checks.items():
-        assert not isinstance(res, Exception), res
-        if key == (Member.PINION, Side.CONCAVE):
-            assert 0.0 < res.excess < 0.05
-        else:
-            assert res.excess < -0.08, (key, res.excess)
+    for res in checks.values():
+        assert not isinstance(res, Exception) and not res.fires, res
     tca = _tca(gs.blank, gs.setups)
     assert fillet_top_messages(gs.design, gs.blank, checks, tca) == {}
     assert _pinion_fillet_contact(tca) == {"drive": False, "coast": False}

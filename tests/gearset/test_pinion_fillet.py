@@ -16,7 +16,8 @@ import pytest
 from spiralbevel.conventions import Member, Side
 from spiralbevel.generation.basic_settings_solve import root_deviation
 from spiralbevel.generation.flank import generate_flank
-from spiralbevel.gearset.pinion_fillet import fit_pinion_edge_radius, gear_top_height, junction_height, lower_root
+from spiralbevel.gearset.pinion_fillet import (fit_pinion_edge_radius, gear_top_height, junction_height, lower_root,
+                                             raise_root)
 from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
 from spiralbevel.job.blank import blank_from_design
@@ -106,3 +107,40 @@ def test_lower_root_puts_the_root_on_the_cone_with_the_same_blade(case):
     assert np.max(np.abs(shifted - old)) < 1e-11            # round-off of the generation kernel at ~100 mm
     assert new.pinion_cutter.blade_angle == c.blade_angle
     assert new.pinion_cutter.point_width == pytest.approx(c.point_width - 2.0 * delta * math.tan(c.blade_angle))
+
+
+def test_raise_root_puts_a_deep_root_on_the_cone_with_the_same_blade(case):
+    """A pinion whose settings put the cutter's tip plane 0.8 mm below the root cone (sliding base + 0.8 mm, as the
+    synthesis' settings do on 20/39 of bench_robustness.py 100 2) is put back on the root cone by a shorter blade:
+    the cutting blade's surface is the same point set (the old blade parameter u is u + Delta / cos(alpha) of the new
+    cutter, Delta < 0); the point width stays (the cutter-fit refit narrows it from the derived one)."""
+    blank, st = case
+    deep = dataclasses.replace(st.settings, sliding_base=st.settings.sliding_base + 0.8)
+    flank = generate_flank(st.cutter, deep, blank, Member.PINION, Side.CONVEX)
+    dev = np.array(root_deviation(flank), float)
+    assert np.all(dev < -0.79)                              # the case: the root 0.8 mm below the cone
+    assert raise_root(blank, Result(st.cutter, st.settings, st.flank)).pinion_flank is st.flank   # on it: kept
+    new = raise_root(blank, Result(st.cutter, deep, flank))
+    delta = new.pinion_settings.sliding_base - deep.sliding_base
+    assert delta == pytest.approx(dev.max(), abs=1e-15)
+    # on the root cone where it was highest, nowhere above it (tolerance as for lower_root above)
+    after = np.array(root_deviation(new.pinion_flank), float)
+    assert after.max() == pytest.approx(0.0, abs=1e-3) and np.all(after < 1e-3)
+    c, n = st.cutter, new.pinion_cutter
+    u_j = c.fillet_range[1]
+    u, psi = np.meshgrid(np.linspace(u_j + 1.0, u_j + 6.0, 11), np.linspace(-0.15, 0.15, 7))
+    old = flank.generator.points(u, psi)
+    shifted = new.pinion_flank.generator.points(u + delta / math.cos(c.blade_angle), psi)
+    assert np.max(np.abs(shifted - old)) < 1e-11            # round-off of the generation kernel at ~100 mm
+    assert n.point_width == c.point_width and n.edge_radius <= c.edge_radius
+    # the cutting blade's meridian (cutter frame S_h, HeadCutter.points, independent of the generation kernel): the
+    # straight part is a line rho = a + b z, the same line k Delta along the axis (k = +-1) after the raise
+    def line(cut):
+        u0 = cut.fillet_range[1]
+        p = cut.points(np.linspace(u0 + 1.0, u0 + 5.0, 5), np.zeros(5))
+        b, a = np.polyfit(p[:, 2], p[:, 0], 1)
+        return a, b
+
+    (a0, b0), (a1, b1) = line(c), line(n)
+    assert b1 == pytest.approx(b0, abs=1e-12)
+    assert abs(abs((a0 - a1) / (b0 * delta)) - 1.0) < 1e-9

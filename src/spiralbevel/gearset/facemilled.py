@@ -262,7 +262,7 @@ def _slot_floors(spec) -> dict:
 
 
 def _synthesize_sides(sy, blank, setups, syn, refit=None, floors=None):
-    new, results = {}, {}
+    new, results, raised = {}, {}, {}
     refit = refit or {}
     for k_side, name in enumerate(sy.sides):
         s1, s2 = PAIR_SIDES[name]
@@ -297,7 +297,7 @@ def _synthesize_sides(sy, blank, setups, syn, refit=None, floors=None):
                                             DEFAULT_MAX_SYNTHESES if k_level == 0 else DEFAULT_FALLBACK_SYNTHESES,
                                             refit.get(s1, False),
                                             DEFAULT_OTHER_SET_SYNTHESES if k_level == 0 else DEFAULT_FALLBACK_SYNTHESES,
-                                            (slot_other, floors))
+                                            (slot_other, floors), raised)
             # a lower level only when this one reached the geometry but no flank covered the face and meshed
             if best is None or not default or best[0] < _CHECK_POSITIONS:
                 break
@@ -333,10 +333,14 @@ def _synthesize_sides(sy, blank, setups, syn, refit=None, floors=None):
         if res.pinion_cutter.point_width < pin.cutter.point_width - 1e-9:   # gearset/pinion_fillet.lower_root
             source += (f"; root lowered onto the root cone: blade extended to a point width of "
                        f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
-        if res.pinion_cutter.point_width > pin.cutter.point_width + 1e-9:   # gearset/root_cone.raise_root
-            source += (f"; root raised onto the root cone: blade tip cut back to a point width of "
-                       f"{res.pinion_cutter.point_width:.3f} mm, sliding base moved, blade surface unchanged")
-        if res.pinion_cutter.edge_radius < pin.cutter.edge_radius:
+        up = id(res) in raised and raised[id(res)][0] is res
+        if up:   # gearset/pinion_fillet.raise_root
+            source += (f"; root raised {raised[id(res)][1]:.3f} mm onto the root cone: blade shortened, sliding base "
+                       f"moved, blade surface unchanged")
+        if up and res.pinion_cutter.edge_radius < pin.cutter.edge_radius:
+            source += (f"; edge radius {res.pinion_cutter.edge_radius:.3f} mm reduced to keep the raised fillet below "
+                       f"the gear's tip contact (derived {pin.cutter.edge_radius:.3f} mm)")
+        elif res.pinion_cutter.edge_radius < pin.cutter.edge_radius:
             source += (f"; edge radius {res.pinion_cutter.edge_radius:.3f} mm refitted to keep the generated fillet "
                        f"below the gear's top (derived {pin.cutter.edge_radius:.3f} mm)")
         new[(Member.PINION, s1)] = FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings,
@@ -369,7 +373,8 @@ def _require_near_branch(res, pin):
 SLOT_CLOSED_RANK = 0.5
 
 
-def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit=False, max_other=0, slot=(None, None)):
+def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit=False, max_other=0, slot=(None, None),
+                raised=None):
     """The local syntheses of one pinion side at the TE level ``te`` (arcsec): the design file's path direction, or
     for the default synthesis the first of ``DEFAULT_CANDIDATES`` whose pair keeps the bearing inside both flanks
     over the whole mesh cycle (TCA: real contact, no edge, at every position); if none does, the one with the fewest
@@ -395,9 +400,8 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
 
     Returns (best, tried, last error): best = (positions off the flank, SynthesisResult, free set name) or None.
     """
-    from .pinion_fillet import fit_pinion_edge_radius, lower_root
+    from .pinion_fillet import fit_pinion_edge_radius, lower_root, raise_root
     from .refit_bearing import off_after_refit
-    from .root_cone import raise_root
     from .slot_open import slot_closed
 
     slot_other, floors = slot
@@ -423,8 +427,11 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
             pinion_settings_hint=pin.settings if hint else None)
         if default:
             _require_near_branch(res, pin)
-        if floors is not None and floors[s1] < 1.0:   # a derived point width: the root on the root cone
-            res = raise_root(blank, res)              # (gearset/root_cone.py), the blade unchanged
+        if default and refit and floors is not None and floors[s1] < 1.0:
+            new = raise_root(blank, res)    # a cutter tip plane below the root cone back on it (pinion_fillet.py)
+            if new is not res and raised is not None:   # {id: (result, mm raised)} for the report's source line
+                raised[id(new)] = (new, res.pinion_settings.sliding_base - new.pinion_settings.sliding_base)
+            res = new
         return res
 
     def judge(res, frac, free, eta=None):
@@ -442,7 +449,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
             off = _CHECK_POSITIONS
         if off == 0 and slot_other is not None and slot_closed(
                 blank, {s1: FlankSetup(Member.PINION, s1, res.pinion_cutter, res.pinion_settings, res.pinion_flank, ""),
-                        slot_other.side: slot_other}, floors):
+                        slot_other.side: slot_other}, floors, finished=slot_other.side):
             off = SLOT_CLOSED_RANK
         if off == 0 and slot_other is not None and floors[s1] < 1.0:
             off = off_after_refit(blank, res, gear, s1, slot_other)

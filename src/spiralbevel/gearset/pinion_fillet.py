@@ -27,6 +27,15 @@ base + Delta). The cradle roll is a rotation about that axis, so it commutes wit
 blade surface is the same (the old blade parameter u is u + Delta / cos(alpha) of the new cutter), and the root, the
 envelope of the tip plane, moves Delta deeper. The new blade point: radius R_h - s Delta tan(alpha) (s = +1 outer,
 -1 inner blade), width W - 2 Delta tan(alpha).
+
+The same move with Delta < 0 (:func:`raise_root`, the point width kept: the cutting blade's surface does not depend on
+it, and the cutter-fit refit narrows it from the derived one) shortens the blade: where the synthesis put the pinion's
+cutter tip plane below the root cone (the settings that fix the flank at its mean point say nothing about the depth of
+the cut; on 20/39 at beta 17.4 deg the synthesized drive side's root lies 1.17 mm below the root cone over the whole
+face), the root is put back on the root cone with the blade surface, and so the mean-point fit, unchanged. A
+root below the root cone misses the root-cone acceptance of the design (0.01 mm), and the cutter's opposite blade, in
+the same tip plane, runs below the root of the other flank of the tooth space, whatever that flank's settings, and
+cuts its fillet at every point width (:mod:`~spiralbevel.gearset.slot_check`).
 """
 
 from __future__ import annotations
@@ -38,7 +47,8 @@ import numpy as np
 
 from ..conventions import Member
 
-__all__ = ["junction_height", "gear_top_height", "fit_pinion_edge_radius", "lower_root", "JUNCTION_STATIONS"]
+__all__ = ["junction_height", "gear_top_height", "fit_pinion_edge_radius", "lower_root", "raise_root",
+           "JUNCTION_STATIONS"]
 
 #: face stations (toe to heel, both included) at which the junction line is held below the gear's top
 JUNCTION_STATIONS = 7
@@ -101,22 +111,120 @@ def lower_root(blank, res):
     -------
     SynthesisResult
     """
-    from ..errors import GeometryError
-    from ..generation.basic_settings_solve import root_deviation
-    from ..generation.flank import generate_flank
-    from ..machine.default_cutter import EDGE_RADIUS_FILL
     from .facemilled import CHECK_ROOT_MM
 
-    cutter, settings = res.pinion_cutter, res.pinion_settings
-    try:
-        dev = [d for d in root_deviation(res.pinion_flank) if d is not None]
-    except GeometryError:
-        return res
+    dev = _root_deviation(res)
     if not dev or min(dev) <= CHECK_ROOT_MM:
         return res
-    delta = min(dev)      # the root moves by delta exactly (the envelope of the tip plane, moved along its normal)
+    return _move_root(blank, res, min(dev))
+
+
+def raise_root(blank, res):
+    """The synthesis result ``res`` with its pinion root put on the blank's root cone at the face station where it
+    lies highest (toe, mean or heel; nowhere above it), blade surface unchanged: the blade shortened (module
+    docstring); ``res`` itself when the root lies within ``CHECK_ROOT_MM`` of the root cone there, or above it (where
+    the tip generates no enveloping root point, the flank's tip line is measured: ``_root_deviation``). The
+    raise lifts the fillet/blade junction with the root: where that brings it above both the mate's tip contact (the
+    estimate of ``fillet_top``) and where it was, the edge radius is reduced to keep it there (the largest that does,
+    times ``EDGE_RADIUS_FILL``); the blade surface stays the same.
+
+    Parameters
+    ----------
+    blank : BevelBlank
+    res : SynthesisResult
+
+    Returns
+    -------
+    SynthesisResult
+    """
+    from .facemilled import CHECK_ROOT_MM
+
+    dev = _root_deviation(res, deep=True)
+    if not dev or max(dev) >= -CHECK_ROOT_MM:
+        return res
+    new = _move_root(blank, res, max(dev), keep_width=True)
+    if new is res:
+        return res
+    return _keep_junction_below_mate_tip(blank, res, new)
+
+
+def _keep_junction_below_mate_tip(blank, old, new, n_face: int = JUNCTION_STATIONS):
+    """``new`` (``old`` with its root raised) with its edge radius reduced, where needed, so that the raise lifts the
+    fillet/blade junction nowhere above both the mate's tip contact (``fillet_top.active_start_height``) and the
+    junction of ``old``: the largest such edge radius times ``EDGE_RADIUS_FILL``; ``new`` itself when it already
+    stays there or no edge radius does (the fillet-top check then speaks)."""
+    from ..errors import GeometryError
+    from ..generation.flank import generate_flank
+    from ..machine.default_cutter import EDGE_RADIUS_FILL
+    from .fillet_top import active_start_height
+    from .hypoid_fillet import largest_fitting_radius
+
+    fl = new.pinion_flank
+    R = np.linspace(fl.outline.Ri, fl.outline.Re, n_face)
+    try:
+        mp = fl.mean_point()
+        limit = np.maximum(active_start_height(blank, Member.PINION, R, abs(mp.pressure_angle), abs(mp.spiral_angle)),
+                           junction_height(old.pinion_flank, n_face))
+        if np.all(junction_height(fl, n_face) <= limit):
+            return new
+        cutter, settings, side = new.pinion_cutter, new.pinion_settings, fl.side
+
+        def flank(r):
+            return generate_flank(dataclasses.replace(cutter, edge_radius=float(r)), settings, blank, Member.PINION,
+                                  side)
+
+        rho = largest_fitting_radius(lambda r: float(np.min(limit - junction_height(flank(r), n_face))),
+                                     cutter.edge_radius)
+        if rho is None:
+            return new
+        rho *= EDGE_RADIUS_FILL
+        return dataclasses.replace(new, pinion_cutter=dataclasses.replace(cutter, edge_radius=rho),
+                                   pinion_flank=flank(rho))
+    except GeometryError:
+        return new
+
+
+def _root_deviation(res, deep: bool = False) -> list:
+    """Heights (mm) of the synthesized pinion's root above the root cone at toe, mean and heel where defined.
+
+    With ``deep`` (the root raise), where the tip generates no enveloping root point at some of these stations (the
+    root there is the trace of the tip circle: ``root_deviation`` gives ``None``), the heights of the flank's tip line
+    (the first fillet row of ``ToothFlank.grid``, solved row by row from the junction) at ``JUNCTION_STATIONS`` face
+    stations instead: the depth of the cut wherever the tip reaches (on 16/87, 26/61 and 30/69 of
+    ``bench_robustness.py 100 2`` the drive cut 1.03, 0.85 and 3.31 mm below the root cone with no enveloping root
+    point at toe, mean or heel)."""
+    from ..errors import GeometryError
+    from ..generation.basic_settings_solve import root_deviation
+
+    try:
+        dev = root_deviation(res.pinion_flank)
+    except GeometryError:
+        dev = (None,)
+    if not deep or all(d is not None for d in dev):
+        return [d for d in dev if d is not None]
+    fl = res.pinion_flank
+    ol = fl.outline
+    try:
+        tip = fl.grid(JUNCTION_STATIONS, 2, n_fillet=2, curvature=False).points[:, 0]
+    except GeometryError:
+        return [d for d in dev if d is not None]
+    R, h = ol.Rh(tip[:, 2], np.hypot(tip[:, 0], tip[:, 1]))
+    out = h - ol.h_root(R)
+    return [float(x) for x in out if np.isfinite(x)]
+
+
+def _move_root(blank, res, delta: float, keep_width: bool = False):
+    """``res`` with its pinion's tip plane moved ``delta`` mm deeper (negative: higher) along the cradle axis, the
+    blade surface unchanged (module docstring); ``res`` itself when the point width would vanish or the new flank
+    cannot be generated. With ``keep_width`` the point width stays (the opposite blade, which the generated flank does
+    not see, moves with the point; the cutter-fit refit then narrows the width from the derived one)."""
+    from ..errors import GeometryError
+    from ..generation.flank import generate_flank
+    from ..machine.default_cutter import EDGE_RADIUS_FILL
+
+    cutter, settings = res.pinion_cutter, res.pinion_settings
     ta = math.tan(cutter.blade_angle)
-    width = cutter.point_width - 2.0 * delta * ta
+    width = cutter.point_width if keep_width else cutter.point_width - 2.0 * delta * ta
     if width <= 0.0:
         return res
     rho_max = 0.5 * width * math.cos(cutter.blade_angle) / (1.0 - math.sin(cutter.blade_angle))   # HeadCutter's limit

@@ -22,17 +22,10 @@ clearance to the mate's tip larger than asked) and the check warns, naming the d
 the mean contact point; the tip plane goes where those settings put it. On ``bench_robustness.py 40 1`` the
 synthesized pinion's root lay 0.12-14.2 mm below the root cone on 15 of the 40 designs (on the concave,
 drive, side; 10/54 on both; 33/147 at beta 4.4 deg: 14.2 mm), which no check counted.
-:func:`raise_root` puts it back on the root cone without changing the blade surface, the mirror of
-:func:`~spiralbevel.gearset.pinion_fillet.lower_root`: the blade's tip is cut back by Delta (the root's depth below
-the root cone, at its lowest station) along the cradle axis and the work moved by Delta away from the cutter
-(sliding base - Delta). The roll is a rotation about that axis, so it commutes with the shift; the generated blade
-surface is the same, and the root, the envelope of the tip plane, rises by Delta. The blade point: radius
-R_h + s Delta tan(alpha) (s = +1 outer, -1 inner blade), width W + 2 Delta tan(alpha); the edge radius is kept
-(the wider point holds it). The fillet and its junction rise with the root by Delta, to where a cutter on the
-root cone puts them, which the fillet check (:mod:`~spiralbevel.gearset.fillet_top`) then judges. This is what a
-commercial summary does: the blank's root line fixes the cutter's tip, and the point width follows from it. Only a
-derived point width is changed (a given one is kept and the check names its key with the width that would place the
-root).
+The default synthesis puts such a root back on the root cone with the cutting-blade surface unchanged
+(:func:`~spiralbevel.gearset.pinion_fillet.raise_root`: the blade shortened along the cradle axis, the work moved by
+the same depth, the point width kept); a given point width is kept as given, and this check names its key with the
+width that would place the root.
 """
 
 from __future__ import annotations
@@ -45,7 +38,7 @@ import numpy as np
 from ..conventions import Member, Side
 from ..errors import DesignError, GeometryError
 
-__all__ = ["RootCone", "root_heights", "root_cone", "root_cone_checks", "raise_root", "root_cone_messages",
+__all__ = ["RootCone", "root_heights", "root_cone", "root_cone_checks", "root_cone_messages",
            "root_cone_report", "ROOT_STATIONS", "CHECK_ROOT_MM"]
 
 #: face stations (toe to heel, both included) at which the generated root is compared with the root cone
@@ -55,10 +48,6 @@ ROOT_STATIONS = 11
 CHECK_ROOT_MM = 0.01
 #: the failure cause as the warning names it (the robustness bench counts designs by it)
 CAUSE = "root below the root cone"
-#: :func:`raise_root`: at most this many shifts, until the root lies no more than ``_RAISE_TOL_MM`` below the root
-#: cone (the first leaves a few micrometres on the designs measured: the height is measured normal to the pitch
-#: generatrix, the shift is along the cradle axis)
-_RAISE_STEPS, _RAISE_TOL_MM = 3, 1e-3
 
 
 @dataclasses.dataclass(frozen=True)
@@ -142,44 +131,6 @@ def root_cone_checks(setups) -> dict:
             out[(m, s)] = root_cone(st.flank)
         except (GeometryError, DesignError) as err:
             out[(m, s)] = err
-    return out
-
-
-def raise_root(blank, res):
-    """The synthesis result ``res`` with its pinion root put on the blank's root cone at the face station where it
-    lies lowest (nowhere below it by more than 1e-3 mm), blade surface unchanged (module docstring); ``res`` itself
-    when the root lies no more than 1e-3 mm below the root cone or cannot be located.
-
-    Parameters
-    ----------
-    blank : BevelBlank
-    res : SynthesisResult
-
-    Returns
-    -------
-    SynthesisResult
-    """
-    from ..generation.flank import generate_flank
-
-    out = res
-    for _ in range(_RAISE_STEPS):   # the root rises by Delta to first order in the dedendum angle: once more
-        cutter, settings = out.pinion_cutter, out.pinion_settings
-        try:
-            delta = root_cone(out.pinion_flank).lowest
-        except GeometryError:
-            return res
-        if delta >= -_RAISE_TOL_MM:
-            break
-        ta = math.tan(cutter.blade_angle)     # delta < 0: the tip cut back by -delta, the point wider
-        new = dataclasses.replace(cutter, point_radius=cutter.point_radius - cutter.sign * delta * ta,
-                                  point_width=cutter.point_width - 2.0 * delta * ta)
-        st = dataclasses.replace(settings, sliding_base=settings.sliding_base + delta)
-        try:
-            flank = generate_flank(new, st, blank, Member.PINION, out.pinion_flank.side)
-            flank.mean_point()
-        except GeometryError:
-            return res
-        out = dataclasses.replace(out, pinion_cutter=new, pinion_settings=st, pinion_flank=flank)
     return out
 
 

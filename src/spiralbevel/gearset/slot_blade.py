@@ -34,6 +34,8 @@ _PSI_SPAN, _N_PSI = 1.2, 1201
 _N_CONTINUE = 8
 #: largest height step (fraction of the whole depth) between two fillet rows, and levels of bisection to reach it
 _ROW_GAP, _REFINE_LEVELS = 0.05, 7
+#: rows on the blade above the junction when asked for (``opposite_blade_grid``'s ``rise``)
+_BLADE_ROWS = 6
 
 
 def _other(side: Side) -> Side:
@@ -147,7 +149,7 @@ def _tip_line(gen, ol, R, near):
 
 
 def opposite_blade_grid(blank, setups, member, side, point_width: float | None = None,
-                        n_face: int = SLOT_STATIONS, n_fillet: int = SLOT_FILLET_ROWS):
+                        n_face: int = SLOT_STATIONS, n_fillet: int = SLOT_FILLET_ROWS, rise: float = 0.0):
     """The fillet the opposite blade of the cutter of flank (``member``, ``side``) generates with that flank's settings
     (module docstring): ``n_fillet`` rows evenly in the blade parameter from the tip line (u_min) to the junction
     (u_j), at ``n_face`` face stations evenly in cone distance from toe to heel (the rows of
@@ -164,6 +166,9 @@ def opposite_blade_grid(blank, setups, member, side, point_width: float | None =
         Default: the cutter's.
     n_face, n_fillet : int
         At least 2 each.
+    rise : float, mm, optional
+        When positive, ``_BLADE_ROWS`` rows on the blade above the junction are added, evenly in u up to
+        u_j + rise / cos(alpha) (alpha the blade angle: about ``rise`` of height), each solved from the row below.
 
     Returns
     -------
@@ -208,6 +213,12 @@ def opposite_blade_grid(blank, setups, member, side, point_width: float | None =
         for j, y in sorted(zip(wide, mid), key=lambda t: -t[0]):
             rows.insert(j + 1, np.concatenate([np.full((n_face, 1), 0.5 * (x[0, j, 0] + x[0, j + 1, 0])), y], -1))
         x = np.stack(rows, 1)
+    if rise > 0.0:
+        ub = gen.cp["u_j"] + rise / math.cos(opp.blade_angle) * np.linspace(0.0, 1.0, _BLADE_ROWS + 1)[1:]
+        blade = [x[:, -1]]
+        for uk in ub:
+            blade.append(np.concatenate([np.full((n_face, 1), uk), _row(gen, ol, R, uk, (blade[-1][:, 1:],))], -1))
+        x = np.concatenate([x, np.stack(blade[1:], 1)], 1)
     return gen.evaluate_at(x[..., 0], x[..., 1], x[..., 2], curvature=False), opp
 
 

@@ -21,8 +21,12 @@ component |n . e_phi| of that flank's unit normal there (first order in the dist
 the CAD root-slot width :func:`~spiralbevel.geometry.solid.root_slot_width`, is ill-conditioned on the fillet's
 bottom, where the flank runs nearly along the circle). Both surfaces are compared at equal cone distance R and equal
 height h, the opposite flank's azimuth and normal interpolated along its generated profile (fillet and blade rows).
-Below the opposite flank's generated root the opposite blade only cuts the slot's bottom (whose depth the root-cone
-check judges), not the flank.
+Where the opposite blade runs below the opposite flank's generated root (the cut flank's settings put the cutter's
+tip plane deeper than that root), the measure is taken from the opposite flank's side: in each section R = const, the
+distance of that flank's root edge and fillet points from the opposite blade's profile (its fillet, continued on its
+blade up to the flank's fillet junction), positive where such a point lies in the region the blade cuts, times the
+share of the flank's normal in the section. Below the root, at heights no point of the flank has, the blade's points
+alone say nothing: the flank's material over them (its root edge and fillet) is what the blade removes.
 
 The generated flank itself does not depend on W (the kernel sees only the cutting blade), so a derived point width
 that intrudes is refitted without changing any flank: the largest W at which the opposite blade intrudes nowhere by

@@ -22,7 +22,7 @@ __all__ = ["SLOT_FLOOR", "slot_closed"]
 SLOT_FLOOR = 0.2
 
 
-def slot_closed(blank, pinion_setups, floors) -> bool:
+def slot_closed(blank, pinion_setups, floors, finished: Side | None = None) -> bool:
     """True when, for some pinion side, no point width of its cutter down to ``floors[side]`` times its own fits.
 
     Parameters
@@ -33,6 +33,9 @@ def slot_closed(blank, pinion_setups, floors) -> bool:
     floors : {Side: float}, -
         Narrowest point width tried per side as a fraction of its cutter's: ``SLOT_FLOOR`` for a derived point width
         (the refit narrows it), 1 for a given one (kept as given).
+    finished : Side, optional
+        The side synthesized before (its settings final): its cutter does not count where its tip plane lies more
+        than ``CHECK_ROOT_MM`` below the root cone (Notes).
 
     Returns
     -------
@@ -44,7 +47,15 @@ def slot_closed(blank, pinion_setups, floors) -> bool:
     One opposite-blade generation per side, at the floor: the intrusion falls as the point narrows (the refit's
     premise), so some width from the cutter's own down to the floor fits exactly when the floor does (by
     ``SLOT_FIT_MM``, what a refit leaves; by ``SLOT_TOL_MM`` at a floor of 1, a width kept as given).
+
+    The rule judges what the candidate can change. The finished side's cutter whose tip plane lies below the root
+    cone (where the root raise of the default synthesis, ``pinion_fillet.raise_root``, could not put it: its root is
+    not below the root cone over the whole face) runs its opposite blade below the root of the candidate's flank,
+    whatever the candidate's settings, and cuts that flank's root edge and fillet: that closure is the finished side's,
+    and the cutter-fit check of the developed pair names it with the keys to change (``slot_check.slot_messages``).
+    Ranking every candidate down for it would only end the search on a worse bearing.
     """
+    from .facemilled import CHECK_ROOT_MM
     from .slot_check import SLOT_FIT_MM, SLOT_TOL_MM, slot_fit
 
     setups = {(Member.PINION, s): st for s, st in pinion_setups.items()}
@@ -52,9 +63,9 @@ def slot_closed(blank, pinion_setups, floors) -> bool:
         floor = min(float(floors[side]), 1.0)
         tol = SLOT_TOL_MM if floor >= 1.0 else SLOT_FIT_MM
         try:
-            if slot_fit(blank, setups, Member.PINION, side,
-                        floor * float(pinion_setups[side].cutter.point_width)).intrusion > tol:
-                return True
+            fit = slot_fit(blank, setups, Member.PINION, side, floor * float(pinion_setups[side].cutter.point_width))
         except (GeometryError, DesignError):
+            return True
+        if fit.intrusion > tol and not (side is finished and fit.tip_height < -CHECK_ROOT_MM):
             return True
     return False
