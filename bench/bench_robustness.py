@@ -102,7 +102,9 @@ def develop(text, beta):
             return f"TCA {name}: NaN transmission error", None
     dev = max(max(abs(math.degrees(st.flank.mean_point().pressure_angle) - 20.0),
                   abs(math.degrees(st.flank.mean_point().spiral_angle) - beta)) for st in setups.values())
-    edge = any(section[n]["edge_contact_positions_deg"] for n in ("drive", "coast"))
+    # an edge contact at a position, or a short one that leads between positions (gearset.tca.short_events)
+    edge = any(section[n]["edge_contact_positions_deg"] or any(e["kind"] == "edge" for e in section[n]["short_events"])
+               for n in ("drive", "coast"))
     z1 = spec.gear_set.pinion_teeth
     levels = {n: (synth[n].summary()["te_magnitude_arcsec"], te_level(section[n], z1)) for n in ("drive", "coast")}
     slot = slot_checks(blank, setups)

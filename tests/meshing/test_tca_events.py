@@ -58,3 +58,23 @@ def test_factor_is_checked(shifted):
     *_, solve = shifted
     with pytest.raises(DesignError, match="factor"):
         events_between(solve, solve(21), factor=1)
+
+
+def test_job_section_lists_the_events_the_positions_step_over(shifted):
+    """The job's TCA section (``gearset.tca.short_events``, solved again from the pair and the positions' mean) gives
+    the events of :func:`events_between` on the same TCA, each in the report's units."""
+    from spiralbevel.gearset.tca import short_events
+    from spiralbevel.meshing.pair import MeshingPair
+
+    c1, c2, kin, solve = shifted
+    res = solve(21)
+    sh = 0.5 * float(res.phi1[0] + res.phi1[-1])
+    pair = MeshingPair(c1, c2, kin, np.r_[c1.reference_params, c2.reference_params, -kin.z1 / kin.z2 * sh])
+    got = short_events(pair, res)
+    want = events_between(solve, res, factor=8)
+    assert len(got) == len(want) > 0
+    for g, w in zip(got, want):
+        assert g["pinion_rotation_deg"] == pytest.approx(np.degrees(w.phi1), abs=1e-9)
+        assert g["transmission_error_arcsec"] == pytest.approx(w.te / ARCSEC, abs=1e-6)
+        assert g["kind"] == ("edge" if w.status == ContactStatus.EDGE else "surface")
+    assert any(g["kind"] == "edge" and (g["member"], g["edge"]) == ("pinion", "top") for g in got)

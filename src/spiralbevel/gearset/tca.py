@@ -27,20 +27,24 @@ def run_pair_tca(blank, setups, grids, n_positions: int = 41):
     section: dict[str, dict[str, Any]] = {}
     outlines: dict[str, Any] = {}
     for name in SIDES:
-        results[name], section[name], outline = side_tca(blank, setups, name, n_positions=n_positions, grids=grids)
+        results[name], section[name], outline = side_tca(blank, setups, name, n_positions=n_positions, grids=grids,
+                                                          events=True)
         if outline is not None:
             outlines[name] = outline
     return results, section, outlines
 
 
-def side_tca(blank, setups, name: str, n_positions: int = 41, misalignment=None, grids=None, pair=None):
+def side_tca(blank, setups, name: str, n_positions: int = 41, misalignment=None, grids=None, pair=None,
+             events: bool = False):
     """TCA of one side (``"drive"`` or ``"coast"``) of a face-milled pair.
 
     Returns (TCAResult or None, report section, (pinion outline, gear outline) in the TCA's frames or None). The
     outlines are the flank grids (``grids``, {(member, side): FlankGeometry}) turned as the phased flanks; without
     ``grids`` they are None. A failed solve gives (None, section with ``error``, None). ``pair`` (a
     :class:`~spiralbevel.meshing.pair.MeshingPair`) replaces the spiral bevel assembly of the two flanks, e.g. the
-    hypoid pair of a synthesis with its offset kinematics (``gearset.hypoid.hypoid_pair``).
+    hypoid pair of a synthesis with its offset kinematics (``gearset.hypoid.hypoid_pair``). With ``events`` the section
+    also lists the contacts that lead between the positions (``short_events``, :func:`short_events`), and a short edge
+    contact among them on an edge the positions show no contact at is warned of.
     """
     s1, s2 = SIDES[name]
     if pair is None:
@@ -55,7 +59,57 @@ def side_tca(blank, setups, name: str, n_positions: int = 41, misalignment=None,
     section = tca_section(name, res)
     if "error" in section:
         return None, section, None
+    if events:
+        section["short_events"] = short_events(pair, res, misalignment)
+        seen = {(m, e) for _, _, m, e in res.edges}     # an edge the positions already show is warned of as such
+        edge = [e for e in section["short_events"] if e["kind"] == "edge" and (e["member"], e["edge"]) not in seen]
+        if edge:
+            e = max(edge, key=lambda e: e["transmission_error_arcsec"])
+            warnings.warn(f"TCA {name} side: a short edge contact ({e['member']} {e['edge']}, pair {e['pair']}, TE "
+                          f"{e['transmission_error_arcsec']:.2f} arcsec) leads between positions "
+                          f"{e['between_positions'][0]} and {e['between_positions'][1]} of {len(res.phi1)}, which step "
+                          "over it (report: short_events): the bearing touches that edge for part of the mesh cycle",
+                          SpiralBevelWarning, stacklevel=3)
     return res, section, outline
+
+
+def short_events(pair, res, misalignment=None) -> list[dict[str, Any]]:
+    """The contacts of one side's TCA ``res`` that lead between its positions (an incoming pair's tip edge touching
+    first for a percent of the mesh cycle, say), found by solving the intervals where a pair's contact changes kind
+    eight times finer (:func:`~spiralbevel.meshing.tca_events.events_between`); [] when no interval is flagged or the
+    finer TCA cannot be solved.
+
+    Parameters
+    ----------
+    pair : MeshingPair
+        The pair ``res`` was solved on (same misalignment, start and mean position).
+    res : TCAResult
+    misalignment : Misalignment or None
+
+    Returns
+    -------
+    list of dict
+        ``pinion_rotation_deg`` (deg), ``transmission_error_arcsec`` (arcsec), ``pair`` (tooth pair k), ``kind``
+        ("edge" or "surface": a surface contact above the TE at both ends of its interval), ``member`` and ``edge``
+        (of an edge contact, else None), ``between_positions`` ([i, i + 1] of ``res``).
+    """
+    from ..meshing.tca_events import events_between
+    from ..meshing.tca_result import ContactStatus
+
+    mean = 0.5 * float(res.phi1[0] + res.phi1[-1])     # the positions lie evenly about the mean position
+
+    def solve(n):
+        return solve_tca(pair.pinion, pair.gear, pair.kinematics, misalignment=misalignment, n_positions=n,
+                         phi1_mean=mean, start=pair.start)
+
+    try:
+        ev = events_between(solve, res)
+    except (NoContactError, ConvergenceError, ValueError):
+        return []
+    return [{"pinion_rotation_deg": math.degrees(e.phi1), "transmission_error_arcsec": e.te / ARCSEC,
+             "pair": e.pair, "kind": "edge" if e.status == ContactStatus.EDGE else "surface",
+             "member": e.edge[0] if e.edge else None, "edge": e.edge[1] if len(e.edge) > 1 else None,
+             "between_positions": [e.interval, e.interval + 1]} for e in ev]
 
 
 def tca_section(name: str, res) -> dict:
