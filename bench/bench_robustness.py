@@ -103,8 +103,8 @@ def develop(text, beta):
     dev = max(max(abs(math.degrees(st.flank.mean_point().pressure_angle) - 20.0),
                   abs(math.degrees(st.flank.mean_point().spiral_angle) - beta)) for st in setups.values())
     # an edge contact at a position, or a short one that leads between positions (gearset.tca.short_events)
-    edge = any(section[n]["edge_contact_positions_deg"] or any(e["kind"] == "edge" for e in section[n]["short_events"])
-               for n in ("drive", "coast"))
+    at_positions = any(section[n]["edge_contact_positions_deg"] for n in ("drive", "coast"))
+    edge = at_positions or any(e["kind"] == "edge" for n in ("drive", "coast") for e in section[n]["short_events"])
     z1 = spec.gear_set.pinion_teeth
     levels = {n: (synth[n].summary()["te_magnitude_arcsec"], te_level(section[n], z1)) for n in ("drive", "coast")}
     slot = slot_checks(blank, setups)
@@ -116,7 +116,7 @@ def develop(text, beta):
     # included: {"pinion concave": depth mm} (an uncomputed check counts as a miss, depth NaN)
     roots = {f"{m.value} {s.value}": (float("nan") if isinstance(r, Exception) else -r.lowest)
              for (m, s), r in root_cone_checks(setups).items() if isinstance(r, Exception) or r.below}
-    return None, (dev, edge, levels, slot_ok, refit, fillet, roots)
+    return None, (dev, edge, levels, slot_ok, refit, fillet, roots, edge and not at_positions)
 
 
 def te_level(sec, z1):
@@ -162,7 +162,7 @@ def main(n=40, seed=1, part=0, parts=1):
     rng = np.random.default_rng(seed)
     ok, reasons, crashes = 0, collections.Counter(), []
     missed_reasons = collections.Counter()     # the checks developed pairs miss, by cause (figures stripped)
-    n_angles = n_inside = n_level = n_slot = n_refit = n_refit_ok = n_all = n_root = 0
+    n_angles = n_inside = n_level = n_slot = n_refit = n_refit_ok = n_all = n_root = n_short = 0
     t0, c0 = time.perf_counter(), time.process_time()
     n_run = 0
     for i in range(n):
@@ -200,6 +200,7 @@ def main(n=40, seed=1, part=0, parts=1):
                 missed_reasons[f"edge contact ({FILLET_CAUSE})" if FILLET_CAUSE in m else
                                re.sub(r"\d[\d.]*", "#", m)] += 1
             n_slot += checks[3]
+            n_short += checks[7]
             n_root += not checks[6]
             n_refit += checks[4]
             n_refit_ok += checks[4] and checks[3]
@@ -211,7 +212,8 @@ def main(n=40, seed=1, part=0, parts=1):
     print(f"developed {ok} of {n} designs ({100.0 * ok / n:.0f} %), {dt / n:.2f} s per design (wall), "
           f"{dc / n:.2f} s CPU per design")
     print(f"  of these: mean-point angles of all four flanks within 0.05 deg of the design: {n_angles}; bearing "
-          f"inside both flanks (no edge contact in the 21-position TCA of either side): {n_inside}; TE level of both "
+          f"inside both flanks (no edge contact in the 21-position TCA of either side, nor between its positions): "
+          f"{n_inside} (edge contact only between the positions: {n_short}); TE level of both "
           f"sides at the design's {DESIGN_TE_ARCSEC:g} arcsec (synthesized at it, TCA within "
           f"{100 * TE_LEVEL_TOL:.0f} %): {n_level}; every cutter fits its tooth space: {n_slot} (a derived point "
           f"width refitted in {n_refit}, of which {n_refit_ok} then fit); every root on or above the root cone: "

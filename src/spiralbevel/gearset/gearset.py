@@ -254,7 +254,8 @@ class GearSet:
         n = positions or self.design.tca.positions
         res, section, outline = side_tca(self.blank, self.setups, _side_name(side), n_positions=n,
                                          misalignment=mis, grids=self.grids(),
-                                         pair=self._hypoid_pair(side) if self.is_hypoid else None)
+                                         pair=self._hypoid_pair(side) if self.is_hypoid else None,
+                                         events=mis is None and not self.is_hypoid)   # as the job's report
         if mis is None:   # the developed-pair checks, as the main job reports them
             from .run_facemilled import iso_contact_ratio, tca_side_checks
 
