@@ -139,13 +139,14 @@ def failed_checks(checks):
     fillet junction lies above the mate's tip contact), TE level (design level used, TCA level within 10 %), every
     cutter fits its tooth space, the fillet-above-the-mate's-tip design check (``gearset.fillet_top``), and every
     generated root on or above the blank's root cone (``gearset.root_cone``)."""
-    dev, edge, levels, slot_ok, _, fillet, roots = checks
+    dev, edge, levels, slot_ok, _, fillet, roots, short_only = checks
     out = []
     if dev > 0.05:
         out.append(f"mean-point angles {dev:.3f} deg off")
     if edge:
-        out.append("edge contact" + (f" ({FILLET_CAUSE}: " + ", ".join(f"{k} +{v:.2f} mm" for k, v in fillet.items())
-                                     + ")" if fillet else ""))
+        kind = "edge contact between the TCA positions" if short_only else "edge contact"
+        out.append(kind + (f" ({FILLET_CAUSE}: " + ", ".join(f"{k} +{v:.2f} mm" for k, v in fillet.items())
+                           + ")" if fillet else ""))
     for name, (used, seen) in levels.items():
         if abs(used - DESIGN_TE_ARCSEC) > 1e-6 * DESIGN_TE_ARCSEC:
             out.append(f"{name} TE level reduced to {used:g} arcsec")
