@@ -287,7 +287,7 @@ def rate(
     as_json: bool = typer.Option(False, "--json", help="Print the rating as JSON keyed by ISO symbol (degrees)."),
     output: Optional[Path] = typer.Option(None, "--output", help="Write the JSON to this file instead of stdout."),
 ):
-    """Print the ISO 10300 (Method B1) load capacity rating sheet of a design with a [rating] section."""
+    r"""Print the ISO 10300 (Method B1) load capacity rating sheet of a design with a \[rating] section."""
     from .gearset.rating import rating_from_design
 
     spec = _load(design)

@@ -37,3 +37,12 @@ def test_missing_file_exit_2(tmp_path):
     result = runner.invoke(app, ["run", str(tmp_path / "missing.toml"), "-o", str(tmp_path / "o")])
     assert result.exit_code == 2 and "file not found" in result.output
     assert not (tmp_path / "o").exists()
+
+
+def test_run_into_missing_parent_names_the_output_path(tmp_path):
+    out = tmp_path / "no" / "such" / "out"
+    result = runner.invoke(app, ["run", "-q", "-o", str(out)])
+    assert result.exit_code == 2, result.output
+    assert str(out) in result.output and "parent directory" in result.output
+    assert ".tmp" not in result.output
+    assert list(tmp_path.iterdir()) == []

@@ -314,6 +314,8 @@ def atomic_directory(path: "str | os.PathLike[str]", marker: "str | None" = None
         ``marker`` is set and ``path`` is a non-empty directory without it.
     FileExistsError
         ``path`` is a file or a symbolic link.
+    FileNotFoundError
+        The parent of ``path`` does not exist (nothing is created).
 
     Notes
     -----
@@ -330,6 +332,9 @@ def atomic_directory(path: "str | os.PathLike[str]", marker: "str | None" = None
     parent, name = target.parent, target.name
     if not name:
         raise FileExistsError(errno.EEXIST, "is the root directory", str(target))
+    if not parent.is_dir():  # else mkdtemp's error would name the hidden temporary sibling, not the user's path
+        raise FileNotFoundError(errno.ENOENT, f"its parent directory {parent} does not exist; create it first",
+                                str(target))
     recover_directory(target)
     _check_target(target, marker)
     tmp = Path(tempfile.mkdtemp(prefix=f".{name}.{_TAG}", suffix=".tmp", dir=parent))
