@@ -46,7 +46,7 @@ def run_facemilled(gs, out, steps, report, summary):
         tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids, n_positions=n_pos)
         for name in ("drive", "coast"):
             mark_failed(summary.partial, report["tca"][name], f"TCA, {name} side")
-            _tca_checks(report, name, tca_results.get(name), synth, blank.z1)
+            _tca_checks(report, name, tca_results.get(name), synth, blank.z1, spec)
             iso_contact_ratio(report["tca"][name], blank, name)
         from .fillet_top import fillet_top_report
 
@@ -161,23 +161,32 @@ def tca_and_flank_highlights(report, flanks, machines) -> list[str]:
     return lines
 
 
-def tca_side_checks(res, name, synth, z1) -> list[str]:
+def pinion_settings_given(spec, name) -> bool:
+    """The design file gives the machine settings of the pinion flank of side ``name`` (``face_milling.pinion_<flank>
+    .machine``); else they are synthesized or the basic settings from the blank."""
+    flank = "concave" if name == "drive" else "convex"
+    return getattr(getattr(spec.face_milling, f"pinion_{flank}"), "machine", None) is not None
+
+
+def tca_side_checks(res, name, synth, z1, given: bool = True) -> list[str]:
     """Bearing and TE-level checks of one side (:func:`spiralbevel.meshing.tca_checks.tca_checks`): the parabolic TE
-    level of a local synthesis is checked against its design value; a CMC design against its own curve (tca.cmc)."""
+    level of a local synthesis is checked against its design value; a CMC design against its own curve (tca.cmc).
+    ``given``: the pinion flank's machine settings come from the design file (:func:`pinion_settings_given`)."""
     from ..meshing.tca_checks import tca_checks
 
     local = name in synth and not hasattr(synth[name], "multipoint")
     design = synthesis_units(synth[name].summary()).get("te_magnitude_arcsec") if local else None
-    return tca_checks(res, name, name in synth, design, z1)
+    return tca_checks(res, name, name in synth, design, z1, given)
 
 
-def _tca_checks(report, name, res, synth, z1):
-    """Bearing and TE-level checks of one side into ``tca.<side>.checks`` (and as design warnings)."""
+def _tca_checks(report, name, res, synth, z1, spec=None):
+    """Bearing and TE-level checks of one side into ``tca.<side>.checks`` (and as design warnings); ``spec`` the
+    design file (which pinion settings it gives)."""
     import warnings
 
     from ..errors import DesignWarning
 
-    found = tca_side_checks(res, name, synth, z1)
+    found = tca_side_checks(res, name, synth, z1, True if spec is None else pinion_settings_given(spec, name))
     report["tca"][name]["checks"] = found
     for text in found:
         warnings.warn(text, DesignWarning, stacklevel=2)
