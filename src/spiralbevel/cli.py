@@ -229,8 +229,8 @@ def run(
 ):
     """Compute everything the design asks for and write report.json, plots, STL, STEP and tool paths.
 
-    OUT must be new, empty, or a previous spiralbevel output (it holds the manifest .spiralbevel-output.json); any
-    other directory is refused (exit 2). OUT is replaced whole, or not at all."""
+    OUT must be new, empty, or a previous spiralbevel output (it holds the manifest .spiralbevel-output.json) with no
+    files added to it; any other directory is refused (exit 2). OUT is replaced whole, or not at all."""
     _use_cache_dir(cache_dir)
     spec = _load(design)
     from .job import run_design
