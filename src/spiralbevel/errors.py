@@ -107,10 +107,13 @@ class ConvergenceError(SpiralBevelError, RuntimeError):
         Largest residual norm at the end.
     last : object
         The last iterate (array), for diagnosis.
+    message : str
+        The message without the iteration count and residual (to quote it inside another message once).
     """
 
     def __init__(self, message: str, iterations: int = 0, residual: float = float("nan"), last: Any = None):
         super().__init__(f"{message} (after {iterations} iterations, residual {residual:.3e})")
+        self.message = message
         self.iterations = iterations
         self.residual = residual
         self.last = last

@@ -52,3 +52,12 @@ def test_warning_names_the_key_of_each_case():
     assert "face_milling" not in left_out and "given settings" not in left_out
     (synth,) = bearing_warnings(res, "coast", synthesized=True)
     assert "synthesis.path_direction" in synth
+
+
+def test_default_search_warning_says_to_give_both_sides():
+    """A default-synthesized side that keeps an edge contact: a [synthesis] section with only path_direction would
+    synthesize the drive side alone (its ``sides`` default), so the message names sides with both."""
+    res = _res_with_one_edge_contact()
+    (text,) = bearing_warnings(res, "drive", synthesized=True, default=True)
+    assert 'sides = ["drive", "coast"]' in text and "synthesis.path_direction" in text
+    assert "default synthesis" in text

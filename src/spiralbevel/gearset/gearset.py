@@ -260,7 +260,8 @@ class GearSet:
             from .run_facemilled import iso_contact_ratio, pinion_settings_given, tca_side_checks
 
             section["checks"] = tca_side_checks(res, side, self.synthesis, self.blank.z1,
-                                                pinion_settings_given(self.design, side))
+                                                pinion_settings_given(self.design, side),
+                                                self.design.synthesis is None)
             if not self.is_hypoid:
                 iso_contact_ratio(section, self.blank, side)
         return TCA(_side_name(side), res, section, outline)

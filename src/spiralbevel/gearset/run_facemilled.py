@@ -168,15 +168,16 @@ def pinion_settings_given(spec, name) -> bool:
     return getattr(getattr(spec.face_milling, f"pinion_{flank}"), "machine", None) is not None
 
 
-def tca_side_checks(res, name, synth, z1, given: bool = True) -> list[str]:
+def tca_side_checks(res, name, synth, z1, given: bool = True, default: bool = False) -> list[str]:
     """Bearing and TE-level checks of one side (:func:`spiralbevel.meshing.tca_checks.tca_checks`): the parabolic TE
     level of a local synthesis is checked against its design value; a CMC design against its own curve (tca.cmc).
-    ``given``: the pinion flank's machine settings come from the design file (:func:`pinion_settings_given`)."""
+    ``given``: the pinion flank's machine settings come from the design file (:func:`pinion_settings_given`);
+    ``default``: the design file has no ``[synthesis]`` section."""
     from ..meshing.tca_checks import tca_checks
 
     local = name in synth and not hasattr(synth[name], "multipoint")
     design = synthesis_units(synth[name].summary()).get("te_magnitude_arcsec") if local else None
-    return tca_checks(res, name, name in synth, design, z1, given)
+    return tca_checks(res, name, name in synth, design, z1, given, default)
 
 
 def _tca_checks(report, name, res, synth, z1, spec=None):
@@ -186,7 +187,8 @@ def _tca_checks(report, name, res, synth, z1, spec=None):
 
     from ..errors import DesignWarning
 
-    found = tca_side_checks(res, name, synth, z1, True if spec is None else pinion_settings_given(spec, name))
+    given = True if spec is None else pinion_settings_given(spec, name)
+    found = tca_side_checks(res, name, synth, z1, given, spec is not None and spec.synthesis is None)
     report["tca"][name]["checks"] = found
     for text in found:
         warnings.warn(text, DesignWarning, stacklevel=2)

@@ -24,7 +24,7 @@ TE_LEVEL_TOL = 0.10
 _PINION_SIDE = {"drive": "concave", "coast": "convex"}
 
 
-def bearing_warnings(res, side: str, synthesized: bool, given: bool = True) -> list[str]:
+def bearing_warnings(res, side: str, synthesized: bool, given: bool = True, default: bool = False) -> list[str]:
     """The bearing runs off the flank: positions with no real-flank contact or in edge contact.
 
     Parameters
@@ -38,6 +38,10 @@ def bearing_warnings(res, side: str, synthesized: bool, given: bool = True) -> l
         With ``synthesized`` False: True when the design file gives the pinion flank's machine settings
         (``face_milling.pinion_<side>.machine``), False when they are the basic settings from the blank (a
         ``[synthesis]`` section whose ``sides`` leave this side out). The key the message names depends on it.
+    default : bool, optional
+        With ``synthesized``: the design file has no ``[synthesis]`` section (the default synthesis searched the path
+        directions). A section replaces that search on both sides with its own values (``sides`` defaults to the
+        drive side only), so the message says to give both sides.
 
     Returns
     -------
@@ -51,7 +55,12 @@ def bearing_warnings(res, side: str, synthesized: bool, given: bool = True) -> l
         return []
     where = Counter(f"{member} {edge}" for _i, _k, member, edge in res.edges)
     what = ", ".join(f"{name} at {n}" for name, n in sorted(where.items())) or "no contact"
-    if synthesized:
+    if synthesized and default:
+        key = ("the default synthesis found no path direction that keeps it inside; to try others, give a [synthesis] "
+               "section with sides = [\"drive\", \"coast\"] (it replaces the default search on both sides), a "
+               "synthesis.path_direction (toward the lengthwise direction keeps the path off a tooth top) and a "
+               "shorter synthesis.semi_major_axis")
+    elif synthesized:
         key = ("change synthesis.path_direction (toward the lengthwise direction keeps the path off a tooth top) or "
                "shorten synthesis.semi_major_axis")
     elif given:
@@ -147,12 +156,12 @@ def te_level_warnings(res, side: str, design_arcsec: float | None, z1: int) -> l
 
 
 def tca_checks(res, side: str, synthesized: bool, design_arcsec: float | None = None, z1: int = 0,
-               given: bool = True) -> list[str]:
-    """All TCA checks of one side (:func:`bearing_warnings`, :func:`te_level_warnings`; z1 the pinion teeth; given:
-    see :func:`bearing_warnings`)."""
+               given: bool = True, default: bool = False) -> list[str]:
+    """All TCA checks of one side (:func:`bearing_warnings`, :func:`te_level_warnings`; z1 the pinion teeth; given,
+    default: see :func:`bearing_warnings`)."""
     if res is None:
         return []
-    return (bearing_warnings(res, side, synthesized, given)
+    return (bearing_warnings(res, side, synthesized, given, default)
             + (te_level_warnings(res, side, design_arcsec, z1) if z1 else [])
             + contact_ratio_warnings(res, side, synthesized, given))
 
