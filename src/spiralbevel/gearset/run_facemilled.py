@@ -149,8 +149,10 @@ def tca_and_flank_highlights(report, flanks, machines) -> list[str]:
     lines = []
     for name in ("drive", "coast"):
         sec = report["tca"][name]
+        level = (f" (parabolic level {sec['te_level_arcsec']:.3f} arcsec at the mean contact)"
+                 if sec.get("te_level_arcsec") is not None else "")
         lines.append(f"TCA {name}: " + (sec["error"] if "error" in sec else
-                     f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec, "
+                     f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec{level}, "
                      f"{len(sec['edge_contact_positions_deg'])} edge-contact positions"))
     for m in fm.MEMBERS:
         for s in fm.SIDES:
@@ -190,6 +192,11 @@ def _tca_checks(report, name, res, synth, z1, spec=None):
     given = True if spec is None else pinion_settings_given(spec, name)
     found = tca_side_checks(res, name, synth, z1, given, spec is not None and spec.synthesis is None)
     report["tca"][name]["checks"] = found
+    if res is not None and name in synth and not hasattr(synth[name], "multipoint"):
+        from ..meshing.tca_checks import te_level
+
+        # the level the synthesis designs (te_magnitude): a peak to peak below it is a next pair taking over early
+        report["tca"][name]["te_level_arcsec"] = te_level(res, z1)
     for text in found:
         warnings.warn(text, DesignWarning, stacklevel=2)
 
