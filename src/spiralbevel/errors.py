@@ -57,7 +57,8 @@ class Problem:
         if not self.field:
             return self.reason
         unit = f" {self.unit}" if self.unit and self.unit != "-" else ""
-        text = f"{self.field} = {self.value!r}{unit}"
+        # a quoted value is shown as given ('5 mm'), without the key's unit after it
+        text = f"{self.field} = {self.value!r}{'' if isinstance(self.value, str) else unit}"
         if self.allowed:
             # the unit follows a numeric range ("< 60 deg"), not a sentence
             tail = unit if any(ch.isdigit() for ch in self.allowed) else ""
