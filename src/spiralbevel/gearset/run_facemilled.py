@@ -182,6 +182,16 @@ def tca_side_checks(res, name, synth, z1, given: bool = True, default: bool = Fa
     return tca_checks(res, name, name in synth, design, z1, given, default)
 
 
+def add_te_level(section, res, synth, name, z1) -> None:
+    """``te_level_arcsec`` of a side whose pinion is locally synthesized (parabolic motion curve): the parabolic TE
+    level at the mean contact (``meshing.tca_checks.te_level``), the level the synthesis designs; the peak to peak is
+    lower when the next pair takes over before the parabola reaches it."""
+    if res is not None and name in synth and not hasattr(synth[name], "multipoint"):
+        from ..meshing.tca_checks import te_level
+
+        section["te_level_arcsec"] = te_level(res, z1)
+
+
 def _tca_checks(report, name, res, synth, z1, spec=None):
     """Bearing and TE-level checks of one side into ``tca.<side>.checks`` (and as design warnings); ``spec`` the
     design file (which pinion settings it gives)."""
@@ -192,11 +202,7 @@ def _tca_checks(report, name, res, synth, z1, spec=None):
     given = True if spec is None else pinion_settings_given(spec, name)
     found = tca_side_checks(res, name, synth, z1, given, spec is not None and spec.synthesis is None)
     report["tca"][name]["checks"] = found
-    if res is not None and name in synth and not hasattr(synth[name], "multipoint"):
-        from ..meshing.tca_checks import te_level
-
-        # the level the synthesis designs (te_magnitude): a peak to peak below it is a next pair taking over early
-        report["tca"][name]["te_level_arcsec"] = te_level(res, z1)
+    add_te_level(report["tca"][name], res, synth, name, z1)
     for text in found:
         warnings.warn(text, DesignWarning, stacklevel=2)
 
