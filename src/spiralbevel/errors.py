@@ -57,14 +57,19 @@ class Problem:
         if not self.field:
             return self.reason
         unit = f" {self.unit}" if self.unit and self.unit != "-" else ""
-        # a quoted value is shown as given ('5 mm'), without the key's unit after it
-        text = f"{self.field} = {self.value!r}{'' if isinstance(self.value, str) else unit}"
+        # a quoted value is shown as given ('5 mm', '<missing>'), without the key's unit after it
+        quoted = isinstance(self.value, str)
+        text = f"{self.field} = {self.value!r}{'' if quoted else unit}"
+        tail = ""
         if self.allowed:
             # the unit follows a numeric range ("< 60 deg"), not a sentence
             tail = unit if any(ch.isdigit() for ch in self.allowed) else ""
             text += f": allowed {self.allowed}{tail}"
-        if self.reason:
-            text += f" ({self.reason})"
+        reason = self.reason
+        if quoted and unit and not tail:     # the unit is said once: with the range, else with the reason
+            reason = f"{reason}; in {self.unit}" if reason else f"in {self.unit}"
+        if reason:
+            text += f" ({reason})"
         return text
 
 
