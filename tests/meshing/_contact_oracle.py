@@ -212,10 +212,11 @@ class Oracle:
 
 
 def grid_box(surface, margin=0.02):
-    """Parameter box (2, 2) of a phased generated surface's real flank in its (phi, psi_c) chart: the range of the
-    flank's own 31 x 15 grid (cutter angle, cradle angle), widened by ``margin`` of it at each end."""
+    """Parameter box (2, 2) of a phased generated surface's real flank: the range of the flank's own 31 x 15 grid,
+    widened by ``margin`` of it at each end. The first parameter is the cutter angle phi of the (phi, psi_c) chart, or
+    u of the (u, psi_c) chart for a surface without ``cutter_angle`` (the multi-point control's)."""
     g = surface.flank.grid(31, 15, curvature=False)
-    phi = surface.cutter_angle(g.theta, g.psi_c)
+    phi = surface.cutter_angle(g.theta, g.psi_c) if hasattr(surface, "cutter_angle") else g.u
     lo, hi = np.array([phi.min(), g.psi_c.min()]), np.array([phi.max(), g.psi_c.max()])
     d = margin * (hi - lo)
     return np.stack([lo - d, hi + d], 1)
