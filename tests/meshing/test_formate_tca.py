@@ -11,7 +11,6 @@ arcsec short of the oracle).
 """
 
 import math
-import warnings
 
 import numpy as np
 import pytest
@@ -19,7 +18,6 @@ import pytest
 from _contact_oracle import Oracle, grid_box, lead_deviation
 
 from spiralbevel.conventions import Member, Side
-from spiralbevel.design.blank import BlankInput, compute_blank
 from spiralbevel.meshing.formate import solve_formate_settings
 from spiralbevel.meshing.formate_surface import FormateSurface
 from spiralbevel.meshing.generated_surface import GeneratedSurface
@@ -27,7 +25,7 @@ from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks
 from spiralbevel.meshing.synthesis.hypoid_local import synthesize_hypoid_pinion
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC
-from _hypoid_sample2 import SAMPLE2
+from _hypoid_sample2 import sample2_blank
 
 #: arcsec: the oracle's own accuracy on a contact it samples is ~1e-3 arcsec (zooming grids, Newton to 1e-11 mm)
 TOL_ARCSEC = 0.01
@@ -35,9 +33,7 @@ TOL_ARCSEC = 0.01
 
 @pytest.fixture(scope="module")
 def formate_pair():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+    blank = sample2_blank()
     side = Side.CONVEX                       # pinion convex against the Formate wheel's concave flank
     _, _, gear = solve_formate_settings(blank, Member.GEAR, side.mate)
     pc, ps, _, _ = hypoid_basic_flanks(blank)[(Member.PINION, side)]

@@ -4,7 +4,6 @@ leading contact's gear rotation agrees to <= 0.1 arcsec (the oracle's own accura
 side (surface contact) and on the coast side (where the bearing of the unsynthesized pair runs onto a flank edge)."""
 
 import math
-import warnings
 
 import numpy as np
 import pytest
@@ -12,13 +11,12 @@ import pytest
 from _contact_oracle import Oracle, grid_box, lead_deviation
 
 from spiralbevel.conventions import Member, Side
-from spiralbevel.design.blank import BlankInput, compute_blank
 from spiralbevel.meshing.hypoid_kinematics import HypoidPairKinematics
 from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks, phased_for_hypoid_pair
 from spiralbevel.meshing.misalignment import Misalignment
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC, ContactStatus
-from _hypoid_sample2 import SAMPLE2
+from _hypoid_sample2 import sample2_blank
 
 R = math.radians
 TOL_ARCSEC = 0.1
@@ -26,9 +24,7 @@ TOL_ARCSEC = 0.1
 
 @pytest.fixture(scope="module")
 def pair():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+    blank = sample2_blank()
     return blank, hypoid_basic_flanks(blank), HypoidPairKinematics.from_blank(blank)
 
 

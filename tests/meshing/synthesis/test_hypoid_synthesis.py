@@ -23,7 +23,7 @@ from spiralbevel.meshing.tca_result import ARCSEC, ContactStatus
 
 sys.path.insert(0, str(Path(__file__).parents[1]))
 from _contact_oracle import Oracle, grid_box, lead_deviation  # noqa: E402
-from _hypoid_sample2 import SAMPLE2
+from _hypoid_sample2 import SAMPLE2, sample2_blank
 
 R = math.radians
 ETA, A, TE = R(6.0), 3.7, 6.0 * ARCSEC          # design path direction, semi-major axis (mm), TE magnitude (rad)
@@ -31,9 +31,7 @@ ETA, A, TE = R(6.0), 3.7, 6.0 * ARCSEC          # design path direction, semi-ma
 
 @pytest.fixture(scope="module")
 def synthesized():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+    blank = sample2_blank()
     flanks = hypoid_basic_flanks(blank)
     out = {}
     for side in (Side.CONCAVE, Side.CONVEX):
