@@ -229,8 +229,8 @@ def run(
 ):
     """Compute everything the design asks for and write report.json, plots, STL, STEP and tool paths.
 
-    OUT must be new, empty, or a previous spiralbevel output (it holds the manifest .spiralbevel-output.json); any
-    other directory is refused (exit 2). OUT is replaced whole, or not at all."""
+    OUT must be new, empty, or a previous spiralbevel output (it holds the manifest .spiralbevel-output.json) with no
+    files added to it; any other directory is refused (exit 2). OUT is replaced whole, or not at all."""
     _use_cache_dir(cache_dir)
     spec = _load(design)
     from .job import run_design
@@ -287,7 +287,7 @@ def rate(
     as_json: bool = typer.Option(False, "--json", help="Print the rating as JSON keyed by ISO symbol (degrees)."),
     output: Optional[Path] = typer.Option(None, "--output", help="Write the JSON to this file instead of stdout."),
 ):
-    """Print the ISO 10300 (Method B1) load capacity rating sheet of a design with a [rating] section."""
+    r"""Print the ISO 10300 (Method B1) load capacity rating sheet of a design with a \[rating] section."""
     from .gearset.rating import rating_from_design
 
     spec = _load(design)

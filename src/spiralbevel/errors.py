@@ -57,13 +57,19 @@ class Problem:
         if not self.field:
             return self.reason
         unit = f" {self.unit}" if self.unit and self.unit != "-" else ""
-        text = f"{self.field} = {self.value!r}{unit}"
+        # a quoted value is shown as given ('5 mm', '<missing>'), without the key's unit after it
+        quoted = isinstance(self.value, str)
+        text = f"{self.field} = {self.value!r}{'' if quoted else unit}"
+        tail = ""
         if self.allowed:
             # the unit follows a numeric range ("< 60 deg"), not a sentence
             tail = unit if any(ch.isdigit() for ch in self.allowed) else ""
             text += f": allowed {self.allowed}{tail}"
-        if self.reason:
-            text += f" ({self.reason})"
+        reason = self.reason
+        if quoted and unit and not tail:     # the unit is said once: with the range, else with the reason
+            reason = f"{reason}; in {self.unit}" if reason else f"in {self.unit}"
+        if reason:
+            text += f" ({reason})"
         return text
 
 
@@ -107,10 +113,13 @@ class ConvergenceError(SpiralBevelError, RuntimeError):
         Largest residual norm at the end.
     last : object
         The last iterate (array), for diagnosis.
+    message : str
+        The message without the iteration count and residual (to quote it inside another message once).
     """
 
     def __init__(self, message: str, iterations: int = 0, residual: float = float("nan"), last: Any = None):
         super().__init__(f"{message} (after {iterations} iterations, residual {residual:.3e})")
+        self.message = message
         self.iterations = iterations
         self.residual = residual
         self.last = last

@@ -86,3 +86,17 @@ def test_cache_dir_option(tmp_path, monkeypatch):
 def test_run_help_documents_cache_dir():
     result = runner.invoke(app, ["run", "--help"], env={"COLUMNS": "200"})
     assert "--cache-dir" in result.output and "SPIRALBEVEL_CACHE" in result.output
+
+
+def test_help_keeps_bracketed_section_names():
+    """Rich reads ``[rating]`` in a command's docstring as a style tag and drops it; every command's first help line
+    must come through whole (a bracketed section name is written ``\\[rating]`` in the docstring)."""
+    import inspect
+    import re
+
+    for cmd in app.registered_commands:
+        name = cmd.name or cmd.callback.__name__
+        first = inspect.getdoc(cmd.callback).split("\n\n")[0].replace("\\[", "[")
+        result = runner.invoke(app, [name, "--help"], env={"COLUMNS": "300"})
+        assert result.exit_code == 0, (name, result.output)
+        assert " ".join(first.split()) in " ".join(re.sub(r"[│╭╮╰╯─]", " ", result.output).split()), name

@@ -101,7 +101,8 @@ def test_failed_run_leaves_previous_output_untouched(tmp_path):
     out = tmp_path / "out"
     out.mkdir()
     (out / "marker.txt").write_text("previous run")
-    (out / ".spiralbevel-output.json").write_text("{}")      # a previous spiralbevel output (its manifest)
+    # a previous spiralbevel output (its manifest lists the files it wrote)
+    (out / ".spiralbevel-output.json").write_text('{"files": ["marker.txt"]}')
     result = runner.invoke(app, ["run", str(f), "-o", str(out), "-q"])
     assert result.exit_code == 2, result.output
     assert "base cone" in result.output and "Traceback" not in result.output

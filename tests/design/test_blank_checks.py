@@ -110,3 +110,31 @@ def test_toe_spiral_angle_bounds_are_reported():
     for rc0, reached in ((lo * (1 + 1e-5), True), (lo * (1 - 1e-5), False), (hi * (1 - 1e-5), True),
                          (hi * (1 + 1e-5), False)):
         assert (spiral_angle_at(bl.Ri1, bl.Rm, bl.beta_m1, rc0) is not None) is reached
+
+
+def test_top_land_messages_name_keys_that_widen_it():
+    """The top-land and undercut messages name design-file keys, and the change they name widens the top land (checked
+    on the computed blank, member by member: k_t > 0 thickens the pinion and thins the wheel, a larger c_ham shortens
+    the pinion's addendum and lengthens the wheel's)."""
+    base = dict(k_d=2.4, c_ham=0.1)
+    with pytest.warns(DesignWarning) as rec:
+        bl = compute_blank(_inp(**base))
+    msgs = [str(w.message) for w in rec if "top land of the pinion" in str(w.message)]
+    assert msgs and all("raise gear_set.depth.thickness_factor" in m and
+                        "raise gear_set.depth.mean_addendum_factor" in m for m in msgs), msgs
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DesignWarning)
+        thicker = compute_blank(_inp(**{**base, "k_t": SAMPLE1["k_t"] + 0.05}))
+        shorter = compute_blank(_inp(**{**base, "c_ham": base["c_ham"] + 0.05}))
+    for where in "ime":
+        assert top_land(thicker, 1, where) > top_land(bl, 1, where)     # raise k_t: wider pinion top land
+        assert top_land(shorter, 1, where) > top_land(bl, 1, where)     # raise c_ham: wider pinion top land
+        assert top_land(thicker, 2, where) < top_land(bl, 2, where)     # so the wheel's advice is to lower both
+        assert top_land(shorter, 2, where) < top_land(bl, 2, where)
+    with pytest.raises(GeometryError) as ei:
+        compute_blank(_inp(k_d=3.5))
+    assert "gear_set.depth.thickness_factor" in str(ei.value)
+    with pytest.raises(GeometryError) as ei:
+        compute_blank(_inp(z1=8, z2=9, beta_m=R(10), alpha_dD=R(14.5), alpha_dC=R(14.5), c_ham=0.3, k_t=0.0))
+    text = str(ei.value)
+    assert "gear_set.pinion_teeth" in text and "gear_set.normal_pressure_angle" in text and " z1," not in text

@@ -80,6 +80,18 @@ def test_pointed_tooth_no_longer_from_the_taper():
     assert "pointed" not in text and "gear_set.mean_spiral_angle" in text
 
 
+def test_clearing_value_reads_with_its_unit():
+    """The allowed bound is the clearing value followed by its unit ("allowed >= 21.5 deg"), not "for this design deg";
+    the bound is the value the message tells to change the key to."""
+    with pytest.raises(GeometryError) as ei:
+        _check(_text(12, 41, 20, 35))
+    text = " ".join(str(ei.value).split())
+    bound = re.search(r"gear_set\.normal_pressure_angle = 20\.0 deg: allowed >= (\d+(?:\.\d+)?) deg \(", text)
+    assert bound, text
+    assert "design deg" not in text
+    assert dict(_KEY.findall(text))["normal_pressure_angle"] == bound.group(1)
+
+
 @pytest.mark.parametrize("taper", ["duplex", "standard", "trl"])
 def test_boundaries_keep_the_iso_mean_depths(taper):
     """The root and face cones through the apex pass through the ISO mean dedendum and addendum at R_m (plane geometry

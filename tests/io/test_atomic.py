@@ -145,3 +145,14 @@ def test_directory_target_is_a_file(tmp_path):
         with atomic_directory(f):
             pass
     assert f.read_text() == "x"
+
+
+def test_directory_missing_parent_names_the_users_path(tmp_path):
+    out = tmp_path / "missing" / "out"
+    with pytest.raises(FileNotFoundError) as info:
+        with atomic_directory(out):
+            pass
+    # the error names the path asked for and its missing parent, not the hidden temporary sibling
+    assert info.value.filename == str(out)
+    assert "missing" in str(info.value) and ".tmp" not in str(info.value)
+    assert list(tmp_path.iterdir()) == []

@@ -16,6 +16,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 import time
 
 import pytest
@@ -165,3 +166,35 @@ def test_signal_during_a_run_leaves_no_leftovers(tmp_path, sig, code):
     assert "Traceback" not in err and ("terminated" in err or "interrupted" in err)
     assert _version(out) == "old"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
+
+
+def test_previous_output_with_added_user_files_is_refused(tmp_path):
+    """A previous output is replaced whole; a file the user added to it (not in its manifest) would be deleted by the
+    swap, so the directory is refused, naming the file, and left as it was."""
+    out = tmp_path / "out"
+    _write(out, "1")
+    (out / "notes.txt").write_text("user data")
+    (out / "mine").mkdir()
+    (out / "mine" / "x.csv").write_text("1,2")
+    listed = sorted(json.loads((out / OUTPUT_MARKER).read_text())["files"])
+    with pytest.raises(ForeignDirectoryError) as info:
+        with atomic_directory(out, marker=OUTPUT_MARKER):
+            pytest.fail("the body must not run")
+    assert "notes.txt" in str(info.value) and str(Path("mine") / "x.csv") in str(info.value)
+    assert (out / "notes.txt").read_text() == "user data" and (out / "mine" / "x.csv").read_text() == "1,2"
+    (out / "notes.txt").unlink()
+    (out / "mine" / "x.csv").unlink()
+    assert _version(out) == "1"                        # the previous output as it was
+    _write(out, "2")                                   # only what the manifest lists (and empty folders) left: replaced
+    assert _version(out) == "2" and sorted(json.loads((out / OUTPUT_MARKER).read_text())["files"]) == listed
+
+
+def test_manifest_without_a_file_list_proves_nothing(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / OUTPUT_MARKER).write_text("{}")
+    (out / "mine.txt").write_text("user data")
+    with pytest.raises(ForeignDirectoryError, match="mine.txt"):
+        with atomic_directory(out, marker=OUTPUT_MARKER):
+            pytest.fail("the body must not run")
+    assert (out / "mine.txt").read_text() == "user data"

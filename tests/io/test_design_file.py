@@ -86,3 +86,17 @@ def test_tca_positions_key():
     with pytest.raises(DesignError) as e:
         parse_design(default_design_text() + "\n[tca]\npositions = 3\n")
     assert "tca.positions" in str(e.value) and "3" in str(e.value) and "11" in str(e.value)
+
+
+def test_number_given_with_a_unit_says_to_write_a_bare_number():
+    """"5 mm" or "30mm" for a length: the message says to write a bare number and which unit the key is in, and does not
+    put the unit after the quoted value ('5 mm' mm)."""
+    text = ("[gear_set]\npinion_teeth = 12\ngear_teeth = 41\nmodule = \"5 mm\"\nface_width = \"30mm\"\n"
+            "mean_spiral_angle = 35\n")
+    with pytest.raises(DesignError) as ei:
+        parse_design(text)
+    msgs = {p.field: str(p) for p in ei.value.problems}
+    for key, given in (("gear_set.module", "'5 mm'"), ("gear_set.face_width", "'30mm'")):
+        assert f"{key} = {given}:" in msgs[key], msgs[key]
+        assert f"write a bare number without quotes or unit: {key} is in mm" in msgs[key]
+        assert "<= " in msgs[key] and msgs[key].split("(")[0].rstrip().endswith("mm")   # the range keeps its unit

@@ -111,6 +111,15 @@ def section_limit_depth(bl: BevelBlank, k: int, where: str) -> float:
     return undercut_limit_depth(dvn, min(bl.alpha_nD, bl.alpha_nC))
 
 
+def _thicker_tip(k: int) -> str:
+    """Design-file keys that widen the top land of member ``k`` (k_t > 0 thickens the pinion and thins the wheel;
+    c_ham above its default moves addendum from the pinion to the wheel)."""
+    m = _MEMBER[k]
+    way = "raise" if k == 1 else "lower"
+    return (f"{way} gear_set.depth.thickness_factor (a thicker {m}) or {way} gear_set.depth.mean_addendum_factor "
+            f"(a shorter {m} addendum)")
+
+
 def check_blank(bl: BevelBlank) -> tuple[list[Problem], list[str]]:
     """Run every check.
 
@@ -130,9 +139,11 @@ def check_blank(bl: BevelBlank) -> tuple[list[Problem], list[str]]:
     warn: list[str] = []
 
     if bl.b2 > 0.3 * bl.Re2:
-        warn.append(f"face width b2 = {bl.b2:.4g} mm exceeds 0.3*Re2 = {0.3 * bl.Re2:.4g} mm")
+        warn.append(f"face width b2 = {bl.b2:.4g} mm exceeds 0.3*Re2 = {0.3 * bl.Re2:.4g} mm: lower "
+                    "gear_set.face_width")
     if bl.b2 > 10.0 * bl.met:
-        warn.append(f"face width b2 = {bl.b2:.4g} mm exceeds 10*met = {10.0 * bl.met:.4g} mm")
+        warn.append(f"face width b2 = {bl.b2:.4g} mm exceeds 10*met = {10.0 * bl.met:.4g} mm: lower "
+                    "gear_set.face_width")
 
     for k in (1, 2):
         m = _MEMBER[k]
@@ -142,18 +153,22 @@ def check_blank(bl: BevelBlank) -> tuple[list[Problem], list[str]]:
             if not hf > 0.0:
                 err.append(Problem(f"{sym}{k}", round(hf, 6), "> 0", "mm",
                                    f"vanishing dedendum at the {label} of the {m}: reduce the dedendum angles "
-                                   "(taper), the face width or the clearance"))
+                                   "(gear_set.depth.taper), gear_set.face_width or "
+                                   "gear_set.depth.clearance_factor"))
             if where == "m" and not ha >= 0.0:
                 err.append(Problem(f"ham{k}", round(ha, 6), ">= 0", "mm", f"negative mean addendum of the {m}: "
-                                   "check c_ham and k_d"))
+                                   "check gear_set.depth.mean_addendum_factor (c_ham) and "
+                                   "gear_set.depth.depth_factor (k_d)"))
             if where == "i" and not ha > 0.0:
                 err.append(Problem(f"hai{k}", round(ha, 6), "> 0", "mm",
                                    f"vanishing addendum at the toe of the {m}: reduce the addendum angle "
-                                   "(taper) or the face width"))
+                                   "(gear_set.depth.taper) or gear_set.face_width"))
         df = _g(bl, "delta_f", k)
         if not df > 0.0:
             err.append(Problem(f"delta_f{k}", f"{math.degrees(df):.6g}", "> 0", "deg",
-                               f"root angle of the {m} is not positive: dedendum angle larger than the pitch angle"))
+                               f"root angle of the {m} is not positive: dedendum angle larger than the pitch angle; "
+                               "change gear_set.depth.taper (or its dedendum angles; duplex: a smaller "
+                               "gear_set.cutter_radius lowers the taper)"))
 
     if err:  # the remaining checks need sound depths
         return err, warn
@@ -168,40 +183,48 @@ def check_blank(bl: BevelBlank) -> tuple[list[Problem], list[str]]:
             if not sa > 0.0:
                 if where == "m":
                     err.append(Problem(sym, round(sa, 6), "> 0", "mm", f"pointed teeth: the {m} flanks meet below "
-                                       "the tip at the mean point; reduce the addendum or increase the thickness"))
+                                       f"the tip at the mean point; {_thicker_tip(k)}"))
                 else:
-                    warn.append(f"pointed teeth: top land of the {m} at the {label} {sym} = {sa:.4g} mm <= 0")
+                    warn.append(f"pointed teeth: top land of the {m} at the {label} {sym} = {sa:.4g} mm <= 0; "
+                                f"{_thicker_tip(k)}, or lower gear_set.face_width")
             elif sa < _MIN_TOPLAND * mxn:
                 warn.append(f"small top land of the {m} at the {label}: {sym} = {sa:.4g} mm < "
-                            f"{_MIN_TOPLAND}*m_n = {_MIN_TOPLAND * mxn:.4g} mm")
+                            f"{_MIN_TOPLAND}*m_n = {_MIN_TOPLAND * mxn:.4g} mm; {_thicker_tip(k)}"
+                            + ("" if where == "m" else ", or lower gear_set.face_width"))
 
     # undercut of the pinion (criterion in the module docstring)
     hlim_m = section_limit_depth(bl, 1, "m")
     if bl.ham2 > hlim_m:
         err.append(Problem("hlim1", round(hlim_m, 6), f">= ham2 = {bl.ham2:.6g}", "mm",
                            "pinion undercut: the active flank at the mean point reaches below the interference "
-                           "point (dvn1/2)*sin^2(alpha_n); increase z1, the pressure angle or the pinion addendum"))
+                           "point (dvn1/2)*sin^2(alpha_n); increase gear_set.pinion_teeth or "
+                           "gear_set.normal_pressure_angle, or lengthen the pinion addendum (lower "
+                           "gear_set.depth.mean_addendum_factor)"))
     elif bl.hfm1 > hlim_m:
         warn.append(f"pinion root undercut at the mean point: hfm1 = {bl.hfm1:.4g} mm > limit depth "
-                    f"(dvn1/2)*sin^2(alpha_n) = {hlim_m:.4g} mm")
+                    f"(dvn1/2)*sin^2(alpha_n) = {hlim_m:.4g} mm; increase gear_set.normal_pressure_angle or "
+                    "gear_set.pinion_teeth to clear it")
     hlim_i = section_limit_depth(bl, 1, "i")
     active_i = bl.hfi1 - bl.c
     if active_i > hlim_i:
         warn.append(f"pinion undercut at the toe: active depth hfi1 - c = {active_i:.4g} mm > limit depth "
-                    f"{hlim_i:.4g} mm")
+                    f"{hlim_i:.4g} mm; lower gear_set.face_width or increase gear_set.normal_pressure_angle or "
+                    "gear_set.pinion_teeth")
 
     for k in (1, 2):
         hi = _g(bl, "hi", k)
         if hi < 0.5 * bl.hm:
             warn.append(f"whole depth of the {_MEMBER[k]} at the toe hi{k} = {hi:.4g} mm is less than half the mean "
-                        f"whole depth hm = {bl.hm:.4g} mm (steep depthwise taper)")
+                        f"whole depth hm = {bl.hm:.4g} mm (steep depthwise taper): lower gear_set.face_width or change "
+                        "gear_set.depth.taper (duplex: a smaller gear_set.cutter_radius lowers the taper)")
     if bl.a == 0.0:
         from .contact_ratio import contact_ratio_warnings
 
         warn.extend(contact_ratio_warnings(bl))
     if bl.beta_m1 > 0.0 and bl.beta_i1 < 0.0:
         warn.append(f"the toe spiral angle changes sign (beta_i = {math.degrees(bl.beta_i1):.4g} deg): cutter radius "
-                    f"rc0 = {bl.rc0:.4g} mm is small for this face width")
+                    f"rc0 = {bl.rc0:.4g} mm is small for this face width: raise gear_set.cutter_radius or lower "
+                    "gear_set.face_width")
     return err, warn
 
 

@@ -148,7 +148,10 @@ def _limits(z1, z2, sigma, alpha_n, beta_m, blank, bounds):
         todo = "change " + " and ".join(f"{k} to {v:g} deg" for k, v in new.items() if abs(v - now[k]) > 1e-9)
         todo += (" (or give the pinion a smaller dedendum / the member a smaller addendum with "
                  "gear_set.depth.mean_addendum_factor)")
-        allowed = f"{'>=' if field.endswith('pressure_angle') else '<='} {new[field]:g} for this design"
+        # the bound is numeric so that the unit follows it ("allowed >= 21.5 deg"); that it holds for these tooth
+        # counts and depths only is said in the reason
+        allowed = f"{'>=' if field.endswith('pressure_angle') else '<='} {new[field]:g}"
+        todo = "for this design " + todo
     return GeometryError.single(field, round(now[field], 6), allowed, "deg", "; ".join(reasons) + ": " + todo)
 
 

@@ -98,7 +98,12 @@ def _check_method(method, a: float) -> None:
     raise DesignError.single("gear_set.blank_method", method, allowed, "-", reason)
 
 
-def require_no_offset(blank, command: str) -> None:
+#: why a log-spiral design takes no hypoid offset, and what to change (``require_no_offset``)
+LOGSPIRAL_NO_OFFSET = ("a log-spiral pair has intersecting axes; set gear_set.hypoid_offset = 0, or flank.kind = "
+                       "'face-milled' for a hypoid pair (developed by 'spiralbevel run')")
+
+
+def require_no_offset(blank, command: str, hint: str | None = None) -> None:
     """Stop a command that builds flanks when the blank is a hypoid (ISO 23509 Method 1 dimension sheet only).
 
     Parameters
@@ -107,6 +112,9 @@ def require_no_offset(blank, command: str) -> None:
         Computed blank.
     command : str
         The command's name for the message (e.g. ``"spiralbevel run"``).
+    hint : str, optional
+        What to change instead (default: the commands that do develop a hypoid pair); :data:`LOGSPIRAL_NO_OFFSET`
+        for a log-spiral design.
 
     Raises
     ------
@@ -114,10 +122,12 @@ def require_no_offset(blank, command: str) -> None:
         Naming ``gear_set.hypoid_offset`` when a != 0: the command does not take the offset yet.
     """
     if blank.a != 0.0:
+        # the allowed value is the bare number, so that the unit follows it ("allowed 0 mm (...)")
         raise DesignError.single(
-            "gear_set.hypoid_offset", blank.a, f"a = 0 ({command} builds spiral bevel flanks only)", "mm",
-            "the hypoid dimension sheet (ISO 23509 Method 1) is computed: see 'spiralbevel blank'; 'spiralbevel run' "
-            "and 'spiralbevel machine' develop the hypoid pair, this command does not take the offset yet")
+            "gear_set.hypoid_offset", blank.a, "0", "mm", f"{command} builds spiral bevel flanks only; " + (
+                hint or "the hypoid dimension sheet (ISO 23509 Method 1) is computed: see 'spiralbevel blank'; "
+                "'spiralbevel run' and 'spiralbevel machine' develop the hypoid pair, this command does not take the "
+                "offset yet"))
 
 
 def _renamed(err: DesignError) -> DesignError:

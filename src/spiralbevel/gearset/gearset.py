@@ -257,9 +257,12 @@ class GearSet:
                                          pair=self._hypoid_pair(side) if self.is_hypoid else None,
                                          events=mis is None and not self.is_hypoid)   # as the job's report
         if mis is None:   # the developed-pair checks, as the main job reports them
-            from .run_facemilled import iso_contact_ratio, tca_side_checks
+            from .run_facemilled import add_te_level, iso_contact_ratio, pinion_settings_given, tca_side_checks
 
-            section["checks"] = tca_side_checks(res, side, self.synthesis, self.blank.z1)
+            section["checks"] = tca_side_checks(res, side, self.synthesis, self.blank.z1,
+                                                pinion_settings_given(self.design, side),
+                                                self.design.synthesis is None)
+            add_te_level(section, res, self.synthesis, _side_name(side), self.blank.z1)
             if not self.is_hypoid:
                 iso_contact_ratio(section, self.blank, side)
         return TCA(_side_name(side), res, section, outline)

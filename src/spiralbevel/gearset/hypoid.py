@@ -143,8 +143,12 @@ def _synthesize(spec, blank, setups):
             if off == 0:
                 break
         if best is None:
+            # quote the last failure without its own iteration count: this error appends it once
             raise ConvergenceError(f"{name} side: the default local synthesis of the hypoid pinion found no pinion "
-                                   f"flank for any path direction (last: {last}); give a [synthesis] section",
+                                   f"flank for any path direction (last: {getattr(last, 'message', last)}); give a "
+                                   "[synthesis] section with sides = [\"drive\", \"coast\"] and another "
+                                   "synthesis.free (\"fixed-blade\" or \"modified-roll\"), synthesis.path_direction "
+                                   "or synthesis.semi_major_axis",
                                    getattr(last, "iterations", 0), getattr(last, "residual", float("inf")),
                                    getattr(last, "last", None)) from last
         off, res, eta = best

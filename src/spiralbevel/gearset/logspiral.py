@@ -28,6 +28,13 @@ def design_pair(spec, blank):
     from ..design.logspiral_blank import logspiral_pair_from_blank
 
     g = spec.gear_set
+    if g.depth.taper == "uniform":
+        # one problem naming the key, not one per cone of each member (root and face angle equal to the pitch angle)
+        raise DesignError.single(
+            "gear_set.depth.taper", "uniform", "'standard', 'duplex', 'trl' or 'given' with flank.kind = 'log-spiral'",
+            "-", "a uniform (parallel) depth has root and face angles equal to the pitch angle, but the log-spiral "
+            "tooth needs a tapered depth (its flank is similar to itself about the pitch apex, so its depth grows with "
+            "the cone distance); use gear_set.depth.taper = 'standard' or 'duplex', or flank.kind = 'face-milled'")
     try:
         return logspiral_pair_from_blank(
             blank, g.pinion_teeth, g.gear_teeth, math.radians(g.shaft_angle), math.radians(g.normal_pressure_angle),

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..io.design_schema import DesignFile
-from .blank import blank_section, require_no_offset
+from .blank import LOGSPIRAL_NO_OFFSET, blank_section, require_no_offset
 from ..errors import DesignError
 from .partial import PartialLog
 from .problems import with_design_keys
@@ -97,7 +97,7 @@ def _run(gs, out, summary, kind, steps, manifest):
         if kind == "log-spiral":
             from .run_logspiral import run_logspiral
 
-            require_no_offset(blank, "spiralbevel run on a log-spiral design")
+            require_no_offset(blank, "spiralbevel run on a log-spiral design", LOGSPIRAL_NO_OFFSET)
             run_logspiral(gs, tmp, steps, report, summary)
         elif blank.a != 0.0:
             from .run_hypoid import run_hypoid

@@ -46,7 +46,7 @@ def run_facemilled(gs, out, steps, report, summary):
         tca_results, report["tca"], tca_outlines = run_pair_tca(blank, setups, grids, n_positions=n_pos)
         for name in ("drive", "coast"):
             mark_failed(summary.partial, report["tca"][name], f"TCA, {name} side")
-            _tca_checks(report, name, tca_results.get(name), synth, blank.z1)
+            _tca_checks(report, name, tca_results.get(name), synth, blank.z1, spec)
             iso_contact_ratio(report["tca"][name], blank, name)
         from .fillet_top import fillet_top_report
 
@@ -149,8 +149,10 @@ def tca_and_flank_highlights(report, flanks, machines) -> list[str]:
     lines = []
     for name in ("drive", "coast"):
         sec = report["tca"][name]
+        level = (f" (parabolic level {sec['te_level_arcsec']:.3f} arcsec at the mean contact)"
+                 if sec.get("te_level_arcsec") is not None else "")
         lines.append(f"TCA {name}: " + (sec["error"] if "error" in sec else
-                     f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec, "
+                     f"TE peak-to-peak {sec['peak_to_peak_arcsec']:.3f} arcsec{level}, "
                      f"{len(sec['edge_contact_positions_deg'])} edge-contact positions"))
     for m in fm.MEMBERS:
         for s in fm.SIDES:
@@ -161,24 +163,46 @@ def tca_and_flank_highlights(report, flanks, machines) -> list[str]:
     return lines
 
 
-def tca_side_checks(res, name, synth, z1) -> list[str]:
+def pinion_settings_given(spec, name) -> bool:
+    """The design file gives the machine settings of the pinion flank of side ``name`` (``face_milling.pinion_<flank>
+    .machine``); else they are synthesized or the basic settings from the blank."""
+    flank = "concave" if name == "drive" else "convex"
+    return getattr(getattr(spec.face_milling, f"pinion_{flank}"), "machine", None) is not None
+
+
+def tca_side_checks(res, name, synth, z1, given: bool = True, default: bool = False) -> list[str]:
     """Bearing and TE-level checks of one side (:func:`spiralbevel.meshing.tca_checks.tca_checks`): the parabolic TE
-    level of a local synthesis is checked against its design value; a CMC design against its own curve (tca.cmc)."""
+    level of a local synthesis is checked against its design value; a CMC design against its own curve (tca.cmc).
+    ``given``: the pinion flank's machine settings come from the design file (:func:`pinion_settings_given`);
+    ``default``: the design file has no ``[synthesis]`` section."""
     from ..meshing.tca_checks import tca_checks
 
     local = name in synth and not hasattr(synth[name], "multipoint")
     design = synthesis_units(synth[name].summary()).get("te_magnitude_arcsec") if local else None
-    return tca_checks(res, name, name in synth, design, z1)
+    return tca_checks(res, name, name in synth, design, z1, given, default)
 
 
-def _tca_checks(report, name, res, synth, z1):
-    """Bearing and TE-level checks of one side into ``tca.<side>.checks`` (and as design warnings)."""
+def add_te_level(section, res, synth, name, z1) -> None:
+    """``te_level_arcsec`` of a side whose pinion is locally synthesized (parabolic motion curve): the parabolic TE
+    level at the mean contact (``meshing.tca_checks.te_level``), the level the synthesis designs; the peak to peak is
+    lower when the next pair takes over before the parabola reaches it."""
+    if res is not None and name in synth and not hasattr(synth[name], "multipoint"):
+        from ..meshing.tca_checks import te_level
+
+        section["te_level_arcsec"] = te_level(res, z1)
+
+
+def _tca_checks(report, name, res, synth, z1, spec=None):
+    """Bearing and TE-level checks of one side into ``tca.<side>.checks`` (and as design warnings); ``spec`` the
+    design file (which pinion settings it gives)."""
     import warnings
 
     from ..errors import DesignWarning
 
-    found = tca_side_checks(res, name, synth, z1)
+    given = True if spec is None else pinion_settings_given(spec, name)
+    found = tca_side_checks(res, name, synth, z1, given, spec is not None and spec.synthesis is None)
     report["tca"][name]["checks"] = found
+    add_te_level(report["tca"][name], res, synth, name, z1)
     for text in found:
         warnings.warn(text, DesignWarning, stacklevel=2)
 

@@ -54,7 +54,7 @@ def run_hypoid(gs, out, steps, report, summary):
                 res, report["tca"][name], outline = side_tca(blank, setups, name, n_positions=spec.tca.positions,
                                                              grids=grids, pair=pair)
             mark_failed(summary.partial, report["tca"][name], f"TCA, {name} side")
-            _tca_checks(report, name, res, synth, blank.z1)
+            _tca_checks(report, name, res, synth, blank.z1, spec)
             results[name] = res
             if outline is not None:
                 outlines[name] = outline

@@ -22,8 +22,9 @@ or the new output, and no leftovers":
 
 Steps 2-4 and the recovery run under an exclusive ``flock`` of the parent directory, with SIGINT and SIGTERM held back
 until the renames are done. With ``marker`` set, the directory is marked by a small manifest, and an existing
-non-empty directory without that manifest is refused (:class:`ForeignDirectoryError`): the swap never deletes files
-that spiralbevel did not write.
+non-empty directory without that manifest is refused (:class:`ForeignDirectoryError`), and so is a previous output
+that holds files its manifest does not list (a user's notes added to it): the swap never deletes files that
+spiralbevel did not write.
 """
 
 from __future__ import annotations
@@ -284,6 +285,27 @@ def _check_target(target: Path, marker) -> None:
         raise ForeignDirectoryError(
             errno.EEXIST, f"is a non-empty directory that is not a spiralbevel output (no {marker}); refusing to "
                           "replace it: give a new or empty directory", str(target))
+    if not empty:
+        foreign = _unlisted_files(target, marker)
+        if foreign:
+            shown = ", ".join(foreign[:5]) + (f" and {len(foreign) - 5} more" if len(foreign) > 5 else "")
+            raise ForeignDirectoryError(
+                errno.EEXIST, f"is a previous spiralbevel output that now also holds files it did not write ({shown}); "
+                              "refusing to replace it, which would delete them: move them out or give another "
+                              "directory", str(target))
+
+
+def _unlisted_files(target: Path, marker: str) -> list:
+    """Files (and links) under ``target`` that its manifest ``marker`` does not list, as sorted relative paths: files a
+    user added to a previous output, which replacing it would delete. A manifest that cannot be read or lists no files
+    proves nothing: then every file but the manifest counts."""
+    try:
+        listed = json.loads((target / marker).read_text(encoding="utf-8")).get("files")
+    except (OSError, ValueError, AttributeError):
+        listed = None
+    listed = {str(Path(f)) for f in listed if isinstance(f, str)} if isinstance(listed, list) else set()
+    present = (p for p in target.rglob("*") if p.is_symlink() or not p.is_dir())
+    return sorted(rel for rel in (str(p.relative_to(target)) for p in present) if rel != marker and rel not in listed)
 
 
 @contextlib.contextmanager
@@ -311,9 +333,12 @@ def atomic_directory(path: "str | os.PathLike[str]", marker: "str | None" = None
     Raises
     ------
     ForeignDirectoryError
-        ``marker`` is set and ``path`` is a non-empty directory without it.
+        ``marker`` is set and ``path`` is a non-empty directory without it, or with it but holding files that its
+        manifest does not list (the error names them).
     FileExistsError
         ``path`` is a file or a symbolic link.
+    FileNotFoundError
+        The parent of ``path`` does not exist (nothing is created).
 
     Notes
     -----
@@ -330,6 +355,9 @@ def atomic_directory(path: "str | os.PathLike[str]", marker: "str | None" = None
     parent, name = target.parent, target.name
     if not name:
         raise FileExistsError(errno.EEXIST, "is the root directory", str(target))
+    if not parent.is_dir():  # else mkdtemp's error would name the hidden temporary sibling, not the user's path
+        raise FileNotFoundError(errno.ENOENT, f"its parent directory {parent} does not exist; create it first",
+                                str(target))
     recover_directory(target)
     _check_target(target, marker)
     tmp = Path(tempfile.mkdtemp(prefix=f".{name}.{_TAG}", suffix=".tmp", dir=parent))

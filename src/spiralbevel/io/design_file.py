@@ -249,6 +249,9 @@ def _problem(e) -> Problem:
     if kind in ("literal_error", "float_parsing", "float_type") and len(e["loc"]) > len(loc):
         msg = "expected one of the allowed forms"
         allowed = allowed or _union_allowed(loc)
+    elif kind in ("float_parsing", "int_parsing") and isinstance(value, str) and unit not in ("", "-"):
+        # "5 mm", "30mm": a design file holds bare numbers, each key in its unit
+        msg = f"write a bare number without quotes or unit: {field} is in {unit}"
     return Problem(field, value, allowed, unit, msg)
 
 

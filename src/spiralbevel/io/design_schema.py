@@ -67,7 +67,8 @@ class GearSetSpec(_Model):
     pinion_hand: Literal["RH", "LH"] = _f("RH", description="hand of spiral of the pinion; the gear is opposite")
     cutter_radius: float = _f(114.3, unit="mm", gt=0.0, le=1000.0, description="r_c0 nominal cutter radius")
     hypoid_offset: float = _f(0.0, unit="mm", ge=-1000.0, le=1000.0, description="a, ISO 23509 sign: > 0 when the "
-                               "pinion offset follows the wheel's hand of spiral; != 0: Method 1 (Gleason) blank only")
+                               "pinion offset follows the wheel's hand of spiral; != 0: ISO 23509 Method 1 (Gleason) "
+                               "blank, face-milled flanks only")
     blank_method: Optional[Literal[0, 1, 2, 3]] = _f(
         None, description="ISO 23509 pitch-cone method: 0 (no offset), 1 (Gleason, hypoid); 2 and 3 (Oerlikon, "
         "Klingelnberg) are not implemented; default from hypoid_offset (0 -> 0, else 1)")
@@ -168,7 +169,13 @@ class FaceMillingSpec(_Model):
 
 
 class SynthesisSpec(_Model):
-    """Local synthesis of the pinion settings from the gear's (seed 001 §4; Litvin)."""
+    """Local synthesis of the pinion settings from the gear's (seed 001 §4; Litvin).
+
+    Without this section a face-milled design is developed by default: both pinion sides synthesized, the path
+    direction searched until the bearing stays inside the flanks, a semi-major axis of 0.15 b, a parabolic TE of 8
+    arcsec (docs/conventions.md, "Developed pair by default"). The section replaces that default as a whole: the
+    defaults below apply to every key it leaves out (only the drive side, path direction 6 deg, 3.7 mm, 3 arcsec), so
+    give `sides = ["drive", "coast"]` and every value you mean."""
 
     sides: tuple[Literal["drive", "coast"], ...] = _f(("drive",), description="sides whose pinion flank is synthesized")
     path_direction: Angle = _f(6.0, unit="deg", gt=-60.0, lt=60.0,

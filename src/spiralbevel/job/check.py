@@ -14,10 +14,10 @@ def check_design(spec) -> list:
     blank = blank_from_design(spec)
     try:
         if spec.flank.kind == "log-spiral":
-            from ..gearset.blank import require_no_offset
+            from ..gearset.blank import LOGSPIRAL_NO_OFFSET, require_no_offset
             from ..gearset.logspiral import design_pair
 
-            require_no_offset(blank, "spiralbevel check on a log-spiral design")
+            require_no_offset(blank, "spiralbevel check on a log-spiral design", LOGSPIRAL_NO_OFFSET)
             design_pair(spec, blank)
         elif blank.a != 0.0:   # a hypoid: the four flanks as 'run' develops them (basic settings, hypoid synthesis)
             from ..gearset.hypoid import setup_hypoid_flanks

@@ -24,7 +24,7 @@ TE_LEVEL_TOL = 0.10
 _PINION_SIDE = {"drive": "concave", "coast": "convex"}
 
 
-def bearing_warnings(res, side: str, synthesized: bool) -> list[str]:
+def bearing_warnings(res, side: str, synthesized: bool, given: bool = True, default: bool = False) -> list[str]:
     """The bearing runs off the flank: positions with no real-flank contact or in edge contact.
 
     Parameters
@@ -34,6 +34,14 @@ def bearing_warnings(res, side: str, synthesized: bool) -> list[str]:
     synthesized : bool
         True when the pinion flank of this side comes from local synthesis (its path and ellipse are to change);
         False for given machine settings.
+    given : bool, optional
+        With ``synthesized`` False: True when the design file gives the pinion flank's machine settings
+        (``face_milling.pinion_<side>.machine``), False when they are the basic settings from the blank (a
+        ``[synthesis]`` section whose ``sides`` leave this side out). The key the message names depends on it.
+    default : bool, optional
+        With ``synthesized``: the design file has no ``[synthesis]`` section (the default synthesis searched the path
+        directions). A section replaces that search on both sides with its own values (``sides`` defaults to the
+        drive side only), so the message says to give both sides.
 
     Returns
     -------
@@ -47,13 +55,22 @@ def bearing_warnings(res, side: str, synthesized: bool) -> list[str]:
         return []
     where = Counter(f"{member} {edge}" for _i, _k, member, edge in res.edges)
     what = ", ".join(f"{name} at {n}" for name, n in sorted(where.items())) or "no contact"
-    if synthesized:
+    if synthesized and default:
+        key = ("the default synthesis found no path direction that keeps it inside; to try others, give a [synthesis] "
+               "section with sides = [\"drive\", \"coast\"] (it replaces the default search on both sides), a "
+               "synthesis.path_direction (toward the lengthwise direction keeps the path off a tooth top) and a "
+               "shorter synthesis.semi_major_axis")
+    elif synthesized:
         key = ("change synthesis.path_direction (toward the lengthwise direction keeps the path off a tooth top) or "
                "shorten synthesis.semi_major_axis")
-    else:
+    elif given:
         key = (f"the given settings face_milling.pinion_{_PINION_SIDE[side]}.machine do not keep the bearing inside; "
                f"leave face_milling.pinion_{_PINION_SIDE[side]} out to have the pinion synthesized, or add a "
                "[synthesis] section")
+    else:
+        key = (f"the pinion {_PINION_SIDE[side]} flank is not synthesized (its basic settings come from the blank, "
+               f"synthesis.sides leaves the {side} side out): add \"{side}\" to synthesis.sides, or leave the "
+               "[synthesis] section out to have both sides developed by default")
     return [f"{side} side: the bearing runs off the flank at {n_off} of {te.size} TCA positions (edge contact: "
             f"{what}); {key}"]
 
@@ -138,22 +155,26 @@ def te_level_warnings(res, side: str, design_arcsec: float | None, z1: int) -> l
             f"({dev:+.0%}, allowed +-{TE_LEVEL_TOL:.0%}); change synthesis.te_magnitude"]
 
 
-def tca_checks(res, side: str, synthesized: bool, design_arcsec: float | None = None, z1: int = 0) -> list[str]:
-    """All TCA checks of one side (:func:`bearing_warnings`, :func:`te_level_warnings`; z1 the pinion teeth)."""
+def tca_checks(res, side: str, synthesized: bool, design_arcsec: float | None = None, z1: int = 0,
+               given: bool = True, default: bool = False) -> list[str]:
+    """All TCA checks of one side (:func:`bearing_warnings`, :func:`te_level_warnings`; z1 the pinion teeth; given,
+    default: see :func:`bearing_warnings`)."""
     if res is None:
         return []
-    return (bearing_warnings(res, side, synthesized) + (te_level_warnings(res, side, design_arcsec, z1) if z1 else [])
-            + contact_ratio_warnings(res, side, synthesized))
+    return (bearing_warnings(res, side, synthesized, given, default)
+            + (te_level_warnings(res, side, design_arcsec, z1) if z1 else [])
+            + contact_ratio_warnings(res, side, synthesized, given))
 
 
-def contact_ratio_warnings(res, side: str, synthesized: bool) -> list[str]:
+def contact_ratio_warnings(res, side: str, synthesized: bool, given: bool = True) -> list[str]:
     """The contact of one tooth pair ends before the next pair's begins: contact ratio of the TCA
     (:func:`contact_ratio`) below 1."""
     ratio, lower_bound = contact_ratio(res)
     if lower_bound or ratio >= 1.0:
         return []
     key = ("lengthen synthesis.semi_major_axis or turn synthesis.path_direction toward the lengthwise direction"
-           if synthesized else f"change face_milling.pinion_{_PINION_SIDE[side]}.machine")
+           if synthesized else f"change face_milling.pinion_{_PINION_SIDE[side]}.machine" if given else
+           f"add \"{side}\" to synthesis.sides (the pinion {_PINION_SIDE[side]} flank is not synthesized)")
     return [f"{side} side: contact ratio from the TCA {ratio:.3f} < 1 (one tooth pair leaves the flanks before the "
             f"next one is in contact); {key}"]
 
