@@ -19,7 +19,16 @@ import numpy as np
 from .jit import kernel
 from .tca_edge import N_MARGINS, edge_newton_jets, margins
 
-__all__ = ["screen", "accept", "edge_try"]
+__all__ = ["screen", "accept", "edge_try", "orientation"]
+
+
+@kernel(inline="always")   # one expression
+def orientation(S):
+    """(r_q0 x r_q1) . n of one jet ``S (3, 6)`` (columns r, n, r_q0, r_q1, ...), in the operation order of
+    ``meshing.generated_surface._orientation``: its sign tells the sheet of the envelope a generated point lies on
+    (``GeneratedSurface.on_sheet``)."""
+    return ((S[1, 2] * S[2, 3] - S[2, 2] * S[1, 3]) * S[0, 1] + (S[2, 2] * S[0, 3] - S[0, 2] * S[2, 3]) * S[1, 1]
+            + (S[0, 2] * S[1, 3] - S[1, 2] * S[0, 3]) * S[2, 1])
 
 
 @kernel
@@ -135,8 +144,13 @@ def edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, h, t
         Jet kind, margin kind and "margins share the jet" flag of the pinion, then of the gear.
     p1, mp1, p2, mp2 : float arrays
         Jet and margin parameters of the pinion and the gear.
-    ctol : (2,) float
-        Per member: ``contains(q)`` is "every margin >= -ctol" (NaN fails).
+    ctol : (4,) float
+        Per member (pinion, gear): ``contains(q)`` is "every margin >= -ctol[member]" (NaN fails) and, where
+        ``ctol[2 + member]`` is not 0, "on the sheet": :func:`orientation` of the jet at q times ``ctol[2 + member]``
+        (the sign at the mean point) > 0 (NaN fails; ``GeneratedSurface.on_sheet``). The sheet test reads the jet that
+        the margins evaluate: only for margins of kind ``MARGIN_GENERATED`` that share the surface's jet. A converged
+        solution off the sheet of either member counts as not converged (``conv`` False), as in the separate steps of
+        :func:`spiralbevel.meshing.tca_edge.edge_stage`.
     c1, s1 : (m,) float
         cos, sin of the effective pinion rotations.
     x : (m, 5) float
@@ -161,7 +175,8 @@ def edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, h, t
     te : (m,) float
         Output: TE of the solutions (rad).
     conv, ndot, corner, ma, ea, mb, eb, good, ok, new, win :
-        Output, as :func:`screen` (``conv``, ``ndot``: as the Newton returns them).
+        Output, as :func:`screen` (``conv``, ``ndot``: as the Newton returns them; with ``screen_it``, ``conv`` also
+        False off the sheet).
     """
     m = x.shape[0]
     N = N_MARGINS
@@ -189,7 +204,11 @@ def edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, h, t
     C1 = np.empty(m, np.bool_)
     for i in range(m):
         margins(kinds[1], mp1, x[i, 0], x[i, 1], S, G0[i], dg)
+        on = ctol[2] == 0.0 or orientation(S) * ctol[2] > 0.0   # S: the pinion's jet (margins of a generated flank)
         margins(kinds[4], mp2, x[i, 2], x[i, 3], S, G1[i], dg)
+        on = on and (ctol[3] == 0.0 or orientation(S) * ctol[3] > 0.0)
+        if not on:   # past a limit line of generation: no contact of the real teeth
+            conv[i] = False
         in0 = conv[i]
         in1 = conv[i]
         for e in range(N):

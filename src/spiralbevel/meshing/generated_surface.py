@@ -69,7 +69,7 @@ class GeneratedSurface:
     def contains_margin_tol(self):
         """``EDGE_TOL``: the margin part of :meth:`contains` is "every compiled margin (``boundary_jet``) >= -EDGE_TOL";
         None for a per-system offset law (no compiled margins). (:meth:`contains` also tests :meth:`on_sheet`, which
-        the compiled edge screen does not: TCA screens such surfaces by the separate steps.)"""
+        the compiled edge screen applies from the same jet with the sign :meth:`_sheet_sign`.)"""
         return None if self._prm() is None else EDGE_TOL
 
     @property

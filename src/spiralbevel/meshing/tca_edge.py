@@ -118,9 +118,9 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         return x_edge, te_edge, label
     _, k1, K, _, _ = _setup(prob)  # boundaries of the pinion, of both members
     # the whole solve and screen of a batch in one compiled call where both surfaces have compiled jets and margins
-    # and a margin test as ``contains``, and the TE's frame is given
+    # and a margin test (with the limit-line test of a generated flank) as ``contains``, and the TE's frame is given
     fast = compiled_args(prob)
-    if fast is not None and (te_frame is None or min(fast[5]) < 0):
+    if fast is not None and (te_frame is None or min(fast[5][:2]) < 0):
         fast = None
     if fast is not None:
         d_, M2_, _ = prob._const

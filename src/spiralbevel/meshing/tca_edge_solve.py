@@ -5,6 +5,8 @@ compiled iterations (margins without ``boundary_jet``: ``boundary_margins`` with
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .._core import tca_batch as _b
@@ -36,8 +38,10 @@ def _boundary(surface):
 
 
 def _shares(kind, prm, b):
-    """True where the margins ``b`` of a generated flank evaluate the surface's own jet ``(kind, prm)``."""
-    return bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and np.array_equal(b[1][8:], prm))
+    """True where the margins ``b`` of a generated flank evaluate the surface's own jet ``(kind, prm)`` (the same
+    parameters; a straight blade has NaN in its arc-centre slots, which are equal here)."""
+    return bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and b[1].shape[0] == prm.shape[0] + 8
+                and np.array_equal(b[1][8:], prm, equal_nan=True))
 
 
 def _setup(prob):
@@ -59,8 +63,10 @@ def _setup(prob):
 
 def compiled_args(prob):
     """Arguments of :func:`spiralbevel._core.tca_edge_screen.edge_try` fixed by the problem (kept on it): the kinds
-    (6,), the jet and margin parameters of both members and the tolerances (2,) of their ``contains`` as a margin test
-    (-1 where ``contains`` is no such test); None where the edge Newton does not run entirely in compiled code."""
+    (6,), the jet and margin parameters of both members and their flank tests ``ctol (4,)``: the tolerances of
+    ``contains`` as a margin test (-1 where ``contains`` is no such test) and the sheet sign of a generated flank's
+    limit-line test ``on_sheet`` (0 for a surface without one); None where the edge Newton does not run entirely in
+    compiled code."""
     s = prob.__dict__.get("_edge_args")
     if s is None:
         (b1, b2), _, _, compiled, (sh1, sh2) = _setup(prob)
@@ -68,15 +74,27 @@ def compiled_args(prob):
             s = ()
         else:
             (k1, p1), (k2, p2) = prob._jets
-            # a surface with a limit-line test (``on_sheet``, part of its ``contains``) is screened by the separate
-            # steps, which apply it: the compiled screen tests the margins alone
-            ct = [None if hasattr(sf, "on_sheet") else getattr(sf, "contains_margin_tol", None)
-                  for sf in (prob.pinion, prob.gear)]
+            ct = [_flank_test(sf, sh) for sf, sh in ((prob.pinion, sh1), (prob.gear, sh2))]
             s = (np.array([k1, b1[0], int(sh1), k2, b2[0], int(sh2)], np.int64), np.ascontiguousarray(p1, float),
                  b1[1], np.ascontiguousarray(p2, float), b2[1],
-                 np.array([-1.0 if t is None else float(t) for t in ct]))
+                 np.array([-1.0 if t is None else t[0] for t in ct] + [0.0 if t is None else t[1] for t in ct]))
         prob._edge_args = s
     return s or None
+
+
+def _flank_test(surface, shares):
+    """(margin tolerance, sheet sign) of ``surface.contains`` as the compiled screen applies it, or None where it
+    cannot: ``contains`` is "every margin >= -tol" (``contains_margin_tol``) and, with a limit-line test
+    ``on_sheet``, the orientation of the chart's tangents has the sign ``_sheet_sign()`` of the mean point (±1), read
+    from the jet that the margins evaluate (``shares``)."""
+    tol = getattr(surface, "contains_margin_tol", None)
+    if tol is None:
+        return None
+    if not hasattr(surface, "on_sheet"):
+        return float(tol), 0.0
+    sign = getattr(surface, "_sheet_sign", None)
+    sign = sign() if shares and sign is not None else math.nan
+    return (float(tol), float(sign)) if sign in (1.0, -1.0) else None
 
 
 #: placeholders of the screening arguments of ``edge_try`` when it only solves (``screen_it`` 0)
