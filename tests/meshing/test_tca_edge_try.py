@@ -196,3 +196,23 @@ def test_edge_newton_sharing_the_jet_of_the_margins_changes_nothing(name, monkey
     assert 0.1 * m < shared[1].sum() < m
     for u, v in zip(shared, twice):
         assert np.array_equal(u, v, equal_nan=True)
+
+
+@pytest.mark.parametrize("name", ["seed001", "folded"])
+def test_compiled_flank_test_equals_contains(name):
+    """``flank_contains`` (the compiled margins and limit-line test, as the edge screen applies them) against the
+    generated flank's own ``contains`` (margins, then ``on_sheet`` by numpy) on random points around and beyond both
+    flanks: inside, past every boundary, past the limit line (the folded gear) and off the chart (NaN)."""
+    c1, c2, kin, _, res = _pair(name)
+    rng = np.random.default_rng(7)
+    for c, q in ((c1, res.params1), (c2, res.params2)):
+        q = q[np.isfinite(q[..., 0])]
+        lo, hi = q.min(0), q.max(0)
+        w = hi - lo
+        pts = lo - 0.5 * w + rng.random((4000, 2)) * 2.0 * w
+        ref = c.contains(pts)
+        got = tes_mod.flank_contains(c, pts)
+        assert 200 < ref.sum() < 3800
+        assert np.array_equal(got, ref)
+    off = ~c2.on_sheet(pts) & np.all(c2.boundary_margins(pts) >= 0, -1)
+    assert off.any() == (name == "folded")

@@ -13,9 +13,9 @@ from .._core import tca_batch as _b
 from .._core import tca_edge as _ke
 from .._core import tca_edge_screen as _ks
 from .._core.jets import GENERATED
-from .contact_surface import surface_derivatives
+from .contact_surface import surface_contains, surface_derivatives
 
-__all__ = ["solve_edge_contacts", "corner_split", "corner_index"]
+__all__ = ["solve_edge_contacts", "corner_split", "corner_index", "flank_contains"]
 
 #: step of the forward difference of the curve tangent (surface parameters), and of the central difference of the
 #: margin gradient of surfaces without compiled margins
@@ -95,6 +95,31 @@ def _flank_test(surface, shares):
     sign = getattr(surface, "_sheet_sign", None)
     sign = sign() if shares and sign is not None else math.nan
     return (float(tol), float(sign)) if sign in (1.0, -1.0) else None
+
+
+def flank_contains(surface, q):
+    """``surface.contains(q)`` for ``q (m, 2)`` (all True without ``contains``): compiled
+    (:func:`spiralbevel._core.tca_edge_screen.contains_batch`, the test of the edge screen) where the surface's
+    ``contains`` is its compiled margin test, with the limit-line test of a generated flank read from the jet of its
+    margins; else the surface's own method."""
+    b = _boundary(surface) if getattr(surface, "contains_margin_tol", None) is not None else None
+    if b is None:
+        return surface_contains(surface, q)
+    t = getattr(surface, "_flank_test_src", None)
+    if t is None or t[0] is not b[1]:   # kept with the margin parameters it was derived for
+        jet = getattr(surface, "jet", None)
+        shares = jet is not None and _shares(int(jet[0]), np.asarray(jet[1], float), b)
+        t = (b[1], _flank_test(surface, shares))
+        try:
+            surface._flank_test_src = t
+        except AttributeError:   # a frozen surface: derived again at the next call
+            pass
+    if t[1] is None:
+        return surface_contains(surface, q)
+    q = np.ascontiguousarray(q, float).reshape(-1, 2)
+    out = np.empty(len(q), bool)
+    _ks.contains_batch(b[0], b[1], t[1][0], t[1][1], q, out)
+    return out
 
 
 #: placeholders of the screening arguments of ``edge_try`` when it only solves (``screen_it`` 0)
