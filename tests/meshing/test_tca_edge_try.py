@@ -22,8 +22,8 @@ from spiralbevel.meshing.contact_surface import surface_contains, surface_on_she
 from spiralbevel.meshing.generated_surface import EDGE_TOL, GeneratedSurface, _orientation
 from spiralbevel.meshing.misalignment import Misalignment
 from spiralbevel.meshing.tca import solve_tca
-from spiralbevel.meshing.tca_edge_solve import (_H_TAU, _RCOND, compiled_args, corner_index, margins_of,
-                                                solve_edge_contacts)
+from spiralbevel.meshing.tca_edge_solve import (_H_TAU, _RCOND, compiled_args, corner_index, junction_samples,
+                                                margins_of, solve_edge_contacts)
 from spiralbevel.meshing.tca_result import ContactStatus
 
 _PAIRS = {"seed001": seed001_synthesized_pair, "folded": interference_pair, "limit_line": limit_line_pair}
@@ -139,7 +139,8 @@ def test_edge_try_matches_the_separate_steps(name, sheet, monkeypatch):
     te_f, xe_f = te0.copy(), x_e0.copy()
     G0, G1, tev, conv, nd = np.empty((m, 4)), np.empty((m, 4)), np.empty(m), np.empty(m, bool), np.empty(m)
     out = [np.empty(m, bool)] + [np.empty(m, np.int64) for _ in range(4)] + [np.empty(m, bool) for _ in range(4)]
-    ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, np.cos(phi_eff), np.sin(phi_eff), xs, mem, ee, d, M2, _H_TAU, 1e-11,
+    ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, junction_samples(prob, mem, ee), np.cos(phi_eff), np.sin(phi_eff), xs,
+                mem, ee, d, M2, _H_TAU, 1e-11,
                 30, _RCOND, 1, tep, np.ascontiguousarray(phi1), pairs.astype(float), ii, jj, floor, te_f, xe_f,
                 np.empty((n, P), np.int64), G0, G1, tev, conv, nd, *out)
     # the random systems cover converged and failed solves, accepted and rejected rows, edges and corners, and on the

@@ -298,12 +298,13 @@ def _corner_point(kind, prm, mkind, mprm, share, q0, q1, S, Sm, gm, dgm):
 
 @kernel
 def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c1, s1, x, member, edge, edge2, d, M2,
-                     h, tol, max_iter, rcond):
+                     h, tol, max_iter, rcond, skip):
     """Batched edge and corner Newton for two surfaces with compiled jets and margins, ``x (m, 5)`` updated in place
     (``share1``, ``share2``: see :func:`_jet_points`). A row with ``edge2 >= 0`` is a corner system
     (:mod:`spiralbevel._core.tca_corner`) of the boundaries ``edge`` and ``edge2``, each coded m N + e (boundary e
     of member m, N = :data:`N_MARGINS`; ``member`` is then ignored); otherwise the edge system of boundary ``edge``
-    of ``member``.
+    of ``member``. Rows with ``skip (m,) bool`` are not solved (not converged, ndot NaN, x unchanged: systems shown
+    to have no root, :mod:`spiralbevel._core.tca_corner_screen`).
 
     Returns
     -------
@@ -330,6 +331,9 @@ def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c
     work = np.empty((13, 6))
     iters = 0
     for i in range(m):
+        if skip[i]:
+            ndot[i] = math.nan
+            continue
         A = member[i]
         corner = edge2[i] >= 0
         for it in range(max_iter + 1):

@@ -11,6 +11,7 @@ import numpy as np
 
 from .._core import tca_batch as _b
 from .._core import tca_edge as _ke
+from .._core import tca_corner_screen as _kc
 from .._core import tca_edge_screen as _ks
 from .._core.jets import GENERATED
 from .contact_surface import surface_contains, surface_derivatives
@@ -120,6 +121,37 @@ def flank_contains(surface, q):
     out = np.empty(len(q), bool)
     _ks.contains_batch(b[0], b[1], t[1][0], t[1][1], q, out)
     return out
+
+
+#: corner systems of the pinion's fillet junction against the gear's toe, heel or top edge that the proof of
+#: :mod:`spiralbevel._core.tca_corner_screen` shows to have no root are not solved (False: every system is solved)
+CORNER_PROOF = True
+_NO_JUNCTION = np.zeros((0, 3))
+
+
+def junction_samples(prob, member, edge):
+    """Samples (k, 3) mm of the pinion's fillet junction curve (pinion frame) for the corner proof of
+    :func:`spiralbevel._core.tca_corner_screen.corner_excluded`, computed once per flank (kept on it with the margin
+    parameters they were computed for); k = 0 (no proof) where none of the systems ``(member (m,), edge (m,))`` is such
+    a corner, the pinion is no generated flank with compiled margins, or its junction curve is not found."""
+    _, k1, K, _, _ = _setup(prob)
+    surface = prob.pinion
+    b = _boundary(surface)
+    if not CORNER_PROOF or b is None or b[0] != _ke.MARGIN_GENERATED or k1 != _ke.N_MARGINS:
+        return _NO_JUNCTION
+    lo = corner_index(prob, (0, _kc.FILLET), (1, 0))   # ... with the gear's toe, heel (lo + 1) and top (lo + 2)
+    if not np.any((member == 0) & (edge >= lo) & (edge <= lo + 2)):
+        return _NO_JUNCTION
+    cached = getattr(surface, "_junction_src", None)
+    if cached is None or cached[0] is not b[1]:
+        q, P = np.empty((_kc.N_SAMPLES, 2)), np.empty((_kc.N_SAMPLES, 3))
+        ok = _kc.junction_curve(b[1], np.ascontiguousarray(surface.reference_params, float), q, P)
+        cached = (b[1], P if ok else _NO_JUNCTION, q)
+        try:
+            surface._junction_src = cached
+        except AttributeError:   # a frozen surface: sampled again at the next call
+            pass
+    return cached[1]
 
 
 #: placeholders of the screening arguments of ``edge_try`` when it only solves (``screen_it`` 0)
@@ -290,7 +322,8 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
         conv, ndot = np.empty(m, bool), np.empty(m)
         tep, phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te = _no_screen()
         b0, i0 = np.zeros(0, bool), np.zeros(0, np.int64)
-        _ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, _H_TAU, tol, int(max_iter), _RCOND,
+        _ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, junction_samples(prob, member, edge), c1, s1, x, member, edge, d,
+                     M2, _H_TAU, tol, int(max_iter), _RCOND,
                      0, tep, phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te, conv, ndot, b0, i0, i0, i0,
                      i0, b0, b0, b0, b0)
         return x, conv, ndot
