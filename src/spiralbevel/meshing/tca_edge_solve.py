@@ -40,9 +40,21 @@ def _boundary(surface):
 
 def _shares(kind, prm, b):
     """True where the margins ``b`` of a generated flank evaluate the surface's own jet ``(kind, prm)`` (the same
-    parameters; a straight blade has NaN in its arc-centre slots, which are equal here)."""
-    return bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and b[1].shape[0] == prm.shape[0] + 8
-                and np.array_equal(b[1][8:], prm, equal_nan=True))
+    parameters; a straight blade has NaN in its arc-centre slots, which are equal here). Kept for the last few pairs
+    of parameter arrays (held, so that their ids are not reused)."""
+    key = (kind, id(prm), id(b[1]))
+    hit = _SHARES.get(key)
+    if hit is not None and hit[0] is prm and hit[1] is b[1]:
+        return hit[2]
+    out = bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and b[1].shape[0] == prm.shape[0] + 8
+               and np.array_equal(b[1][8:], prm, equal_nan=True))
+    if len(_SHARES) >= 16:
+        _SHARES.clear()
+    _SHARES[key] = (prm, b[1], out)
+    return out
+
+
+_SHARES = {}
 
 
 def _setup(prob):
@@ -132,25 +144,30 @@ _NO_JUNCTION = np.zeros((0, 3))
 def junction_samples(prob, member, edge):
     """Samples (k, 3) mm of the pinion's fillet junction curve (pinion frame) for the corner proof of
     :func:`spiralbevel._core.tca_corner_screen.corner_excluded`, computed once per flank (kept on it with the margin
-    parameters they were computed for); k = 0 (no proof) where none of the systems ``(member (m,), edge (m,))`` is such
-    a corner, the pinion is no generated flank with compiled margins, or its junction curve is not found."""
-    _, k1, K, _, _ = _setup(prob)
-    surface = prob.pinion
-    b = _boundary(surface)
+    parameters they were computed for, and on ``prob``); k = 0 (no proof) where the pinion is no generated flank with
+    compiled margins or its junction curve is not found, and, before they are computed, where none of the systems
+    ``(member (m,), edge (m,))`` is such a corner (``edge_try`` reads the samples only at those corners)."""
+    got = prob.__dict__.get("_junction")
+    if got is not None:
+        return got
+    (b, _), k1, K, _, _ = _setup(prob)
     if not CORNER_PROOF or b is None or b[0] != _ke.MARGIN_GENERATED or k1 != _ke.N_MARGINS:
+        prob._junction = _NO_JUNCTION
         return _NO_JUNCTION
-    lo = corner_index(prob, (0, _kc.FILLET), (1, 0))   # ... with the gear's toe, heel (lo + 1) and top (lo + 2)
-    if not np.any((member == 0) & (edge >= lo) & (edge <= lo + 2)):
-        return _NO_JUNCTION
+    surface = prob.pinion
     cached = getattr(surface, "_junction_src", None)
     if cached is None or cached[0] is not b[1]:
+        lo = corner_index(prob, (0, _kc.FILLET), (1, 0))   # ... with the gear's toe, heel (lo + 1) and top (lo + 2)
+        if not np.any((member == 0) & (edge >= lo) & (edge <= lo + 2)):
+            return _NO_JUNCTION
         q, P = np.empty((_kc.N_SAMPLES, 2)), np.empty((_kc.N_SAMPLES, 3))
         ok = _kc.junction_curve(b[1], np.ascontiguousarray(surface.reference_params, float), q, P)
         cached = (b[1], P if ok else _NO_JUNCTION, q)
         try:
             surface._junction_src = cached
-        except AttributeError:   # a frozen surface: sampled again at the next call
+        except AttributeError:   # a frozen surface: sampled again for the next problem
             pass
+    prob._junction = cached[1]
     return cached[1]
 
 
