@@ -10,9 +10,9 @@ the pinion point alone,
     f(P) = a rho(v) + b z(v) + c,     v = B2^T (d + R_z(phi1) P)     (the point in the gear's frame),
 
 and a corner of the pinion's fillet junction with that gear boundary is a zero of f along the junction curve (the gear
-rotation then follows). :func:`junction_curve` samples the pinion's junction curve once (a 2-D Newton on u = u_j and
-the cone distance R, marched from toe to heel and 1.5 face widths beyond each); :func:`corner_excluded` proves at one
-pinion rotation that f has no zero along it:
+rotation then follows). ``meshing.tca_edge_solve`` samples the pinion's junction curve once per flank (a 2-D Newton on
+u = u_j and the cone distance R, marched from toe to heel and 1.5 face widths beyond each); :func:`corner_excluded`
+proves at one pinion rotation that f has no zero along it:
 
 * f has one sign s at every sample (else no proof);
 * g = s f is a convex function of P where s a > 0 (rho is a norm of an affine image of P) and concave where s a <= 0.
@@ -39,9 +39,8 @@ import math
 import numpy as np
 
 from .jit import kernel
-from .tca_edge import MARGIN_GENERATED, N_MARGINS, margins
 
-__all__ = ["junction_curve", "corner_excluded", "FILLET", "SAFETY", "BEYOND", "N_SAMPLES"]
+__all__ = ["corner_excluded", "FILLET", "SAFETY", "BEYOND", "N_SAMPLES"]
 
 #: the fillet junction's index among the margins of a generated flank (toe, heel, top, fillet)
 FILLET = 3
@@ -51,57 +50,6 @@ SAFETY = 4.0
 #: N_SAMPLES points
 BEYOND = 1.5
 N_SAMPLES = 129
-
-
-@kernel
-def junction_curve(mprm, q0, out_q, out_p):
-    """Points of the fillet junction curve (u = u_j) of a generated flank with margins ``mprm`` (kind
-    ``MARGIN_GENERATED``) at ``n`` cone distances R evenly from R_i - b w to R_e + b w (w = R_e - R_i, b =
-    :data:`BEYOND`): parameters
-    ``out_q (n, 2)`` and member-frame points ``out_p (n, 3)`` mm. Each point solves R(q) = R_k and u(q) = u_j by
-    Newton (analytic margin gradients), the middle one from ``q0 (2,)``, the others marched outward from it. Returns
-    False where a point does not converge (then no proof is made)."""
-    n = out_q.shape[0]
-    Ri, Re = mprm[2], mprm[3]
-    w = Re - Ri
-    S = np.empty((3, 6))
-    g = np.empty(N_MARGINS)
-    dg = np.empty((N_MARGINS, 2))
-    mid = n // 2
-    for step in range(n):
-        k = mid + (step + 1) // 2 if step % 2 == 1 else mid - step // 2   # mid, mid+1, mid-1, mid+2, ...
-        if k < 0 or k >= n:
-            continue
-        if step == 0:
-            a, b = q0[0], q0[1]
-        else:
-            j = k - 1 if k > mid else k + 1
-            a, b = out_q[j, 0], out_q[j, 1]
-        R = Ri - BEYOND * w + (1.0 + 2.0 * BEYOND) * w * k / (n - 1)
-        ok = False
-        for _ in range(30):
-            margins(MARGIN_GENERATED, mprm, a, b, S, g, dg)
-            f0 = g[0] + Ri - R
-            f1 = g[FILLET]
-            if not (math.isfinite(f0) and math.isfinite(f1)):
-                break
-            if abs(f0) < 1e-11 and abs(f1) < 1e-11:
-                ok = True
-                break
-            det = dg[0, 0] * dg[FILLET, 1] - dg[0, 1] * dg[FILLET, 0]
-            if det == 0.0 or not math.isfinite(det):
-                break
-            da = (f0 * dg[FILLET, 1] - f1 * dg[0, 1]) / det
-            db = (dg[0, 0] * f1 - dg[FILLET, 0] * f0) / det
-            s = min(1.0, 0.5 / max(abs(da), abs(db), 1e-300))   # steps of at most 0.5 rad
-            a -= s * da
-            b -= s * db
-        if not ok:
-            return False
-        out_q[k, 0], out_q[k, 1] = a, b
-        for i in range(3):
-            out_p[k, i] = S[i, 0]
-    return True
 
 
 @kernel(inline="always")

@@ -18,36 +18,9 @@ import numpy as np
 
 from .jit import kernel
 from .tca_corner_screen import FILLET, corner_excluded
-from .tca_edge import MARGIN_GENERATED, N_MARGINS, edge_newton_jets, margins
+from .tca_edge import MARGIN_GENERATED, N_MARGINS, edge_newton_jets, margins, orientation
 
-__all__ = ["screen", "accept", "edge_try", "orientation", "contains_batch"]
-
-
-@kernel(inline="always")   # one expression
-def orientation(S):
-    """(r_q0 x r_q1) . n of one jet ``S (3, 6)`` (columns r, n, r_q0, r_q1, ...), in the operation order of
-    ``meshing.generated_surface._orientation``: its sign tells the sheet of the envelope a generated point lies on
-    (``GeneratedSurface.on_sheet``)."""
-    return ((S[1, 2] * S[2, 3] - S[2, 2] * S[1, 3]) * S[0, 1] + (S[2, 2] * S[0, 3] - S[0, 2] * S[2, 3]) * S[1, 1]
-            + (S[0, 2] * S[1, 3] - S[1, 2] * S[0, 3]) * S[2, 1])
-
-
-@kernel
-def contains_batch(mkind, mprm, tol, sheet, q, out):
-    """The flank test of a surface at every row of ``q (m, 2)`` into ``out (m,) bool``: every margin of
-    :func:`~spiralbevel._core.tca_edge.margins` >= -``tol`` (NaN fails) and, where ``sheet`` is not 0, on the sheet:
-    :func:`orientation` of the jet the margins evaluate (margins of kind ``MARGIN_GENERATED``) times ``sheet`` > 0.
-    The same test as the screen of :func:`edge_try` applies (``GeneratedSurface.contains``)."""
-    S = np.empty((3, 6))
-    g = np.empty(N_MARGINS)
-    dg = np.empty((N_MARGINS, 2))
-    for i in range(q.shape[0]):
-        margins(mkind, mprm, q[i, 0], q[i, 1], S, g, dg)
-        inside = sheet == 0.0 or orientation(S) * sheet > 0.0
-        for e in range(N_MARGINS):
-            if not g[e] >= -tol:
-                inside = False
-        out[i] = inside
+__all__ = ["screen", "accept", "edge_try", "orientation"]
 
 
 @kernel

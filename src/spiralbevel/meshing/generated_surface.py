@@ -156,7 +156,7 @@ class GeneratedSurface:
         if b is not None:
             from .._core import tca_edge as _ke
 
-            g, _ = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(params.reshape(-1, 2)))
+            g = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(params.reshape(-1, 2)))[0]
             return g.reshape(params.shape[:-1] + (4,))
         S, u, _ = self._jet(params)
         r = S[..., 0]

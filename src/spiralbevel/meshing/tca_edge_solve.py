@@ -111,10 +111,10 @@ def _flank_test(surface, shares):
 
 
 def flank_contains(surface, q):
-    """``surface.contains(q)`` for ``q (m, 2)`` (all True without ``contains``): compiled
-    (:func:`spiralbevel._core.tca_edge_screen.contains_batch`, the test of the edge screen) where the surface's
-    ``contains`` is its compiled margin test, with the limit-line test of a generated flank read from the jet of its
-    margins; else the surface's own method."""
+    """``surface.contains(q)`` for ``q (m, 2)`` (all True without ``contains``): from one compiled call
+    (:func:`spiralbevel._core.tca_edge.margins_batch`: the margins and the orientation of their jet, the test of the
+    edge screen) where the surface's ``contains`` is its compiled margin test, with the limit-line test of a generated
+    flank; else the surface's own method."""
     b = _boundary(surface) if getattr(surface, "contains_margin_tol", None) is not None else None
     if b is None:
         return surface_contains(surface, q)
@@ -129,9 +129,12 @@ def flank_contains(surface, q):
             pass
     if t[1] is None:
         return surface_contains(surface, q)
-    q = np.ascontiguousarray(q, float).reshape(-1, 2)
-    out = np.empty(len(q), bool)
-    _ks.contains_batch(b[0], b[1], t[1][0], t[1][1], q, out)
+    tol, sheet = t[1]
+    g, _, o = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float).reshape(-1, 2))
+    with np.errstate(invalid="ignore"):
+        out = np.all(g >= -tol, axis=1)
+        if sheet != 0.0:
+            out &= o * sheet > 0.0
     return out
 
 
@@ -139,6 +142,40 @@ def flank_contains(surface, q):
 #: :mod:`spiralbevel._core.tca_corner_screen` shows to have no root are not solved (False: every system is solved)
 CORNER_PROOF = True
 _NO_JUNCTION = np.zeros((0, 3))
+
+
+def _junction_curve(mprm, q0):
+    """Parameters (n, 2) of the fillet junction curve (u = u_j) of a generated flank with margins ``mprm`` (kind
+    ``MARGIN_GENERATED``) at n = :data:`~spiralbevel._core.tca_corner_screen.N_SAMPLES` cone distances R evenly from
+    R_i - b w to R_e + b w (w = R_e - R_i, b = :data:`~spiralbevel._core.tca_corner_screen.BEYOND`), or None where a
+    point is not found. Each point solves R(q) = R_k and u(q) = u_j (margins toe and fillet, analytic gradients) by
+    Newton to 1e-11, the middle one from ``q0 (2,)``, the others marched outward from it (steps of at most 0.5 rad).
+    Run once per flank (a few hundred calls of the compiled margins)."""
+    n, Ri, Re = _kc.N_SAMPLES, mprm[2], mprm[3]
+    w = Re - Ri
+    R = Ri - _kc.BEYOND * w + (1.0 + 2.0 * _kc.BEYOND) * w * np.arange(n) / (n - 1)
+    out = np.empty((n, 2))
+    mid = n // 2
+    order = [mid] + [k for d in range(1, n) for k in (mid + d, mid - d) if 0 <= k < n]
+    for k in order:
+        x = np.array(q0 if k == mid else out[k - 1 if k > mid else k + 1], float)
+        for _ in range(31):
+            g, dg, _ = _ke.margins_batch(_ke.MARGIN_GENERATED, mprm, x[None])
+            F = np.array([g[0, 0] + Ri - R[k], g[0, _kc.FILLET]])
+            if not np.all(np.isfinite(F)):
+                return None
+            if np.max(np.abs(F)) < 1e-11:
+                break
+            J = np.array([dg[0, 0], dg[0, _kc.FILLET]])
+            with np.errstate(all="ignore"):
+                dx = np.linalg.solve(J, F) if np.all(np.isfinite(J)) and np.linalg.det(J) != 0.0 else None
+            if dx is None or not np.all(np.isfinite(dx)):
+                return None
+            x -= dx * min(1.0, 0.5 / max(np.max(np.abs(dx)), 1e-300))
+        else:
+            return None
+        out[k] = x
+    return out
 
 
 def junction_samples(prob, member, edge):
@@ -160,9 +197,8 @@ def junction_samples(prob, member, edge):
         lo = corner_index(prob, (0, _kc.FILLET), (1, 0))   # ... with the gear's toe, heel (lo + 1) and top (lo + 2)
         if not np.any((member == 0) & (edge >= lo) & (edge <= lo + 2)):
             return _NO_JUNCTION
-        q, P = np.empty((_kc.N_SAMPLES, 2)), np.empty((_kc.N_SAMPLES, 3))
-        ok = _kc.junction_curve(b[1], np.ascontiguousarray(surface.reference_params, float), q, P)
-        cached = (b[1], P if ok else _NO_JUNCTION, q)
+        q = _junction_curve(b[1], np.asarray(surface.reference_params, float))
+        cached = (b[1], _NO_JUNCTION if q is None else np.ascontiguousarray(surface.evaluate(q)[0]), q)
         try:
             surface._junction_src = cached
         except AttributeError:   # a frozen surface: sampled again for the next problem
@@ -205,7 +241,7 @@ def _margin_jets(surface, q, e):
     b = _boundary(surface)
     m = np.arange(len(q))
     if b is not None:
-        g, dg = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))
+        g, dg, _ = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))
         return g[m, e], dg[m, e]
     h = _H_PARAM
     st = np.stack([q, q + (h, 0), q - (h, 0), q + (0, h), q - (0, h)], 0)  # (5, m, 2)
