@@ -151,30 +151,30 @@ def _junction_curve(mprm, q0):
     point is not found. Each point solves R(q) = R_k and u(q) = u_j (margins toe and fillet, analytic gradients) by
     Newton to 1e-11, the middle one from ``q0 (2,)``, the others marched outward from it (steps of at most 0.5 rad).
     Run once per flank (a few hundred calls of the compiled margins)."""
-    n, Ri, Re = _kc.N_SAMPLES, mprm[2], mprm[3]
+    n, Ri, Re = _kc.N_SAMPLES, float(mprm[2]), float(mprm[3])
     w = Re - Ri
-    R = Ri - _kc.BEYOND * w + (1.0 + 2.0 * _kc.BEYOND) * w * np.arange(n) / (n - 1)
     out = np.empty((n, 2))
     mid = n // 2
-    order = [mid] + [k for d in range(1, n) for k in (mid + d, mid - d) if 0 <= k < n]
-    for k in order:
-        x = np.array(q0 if k == mid else out[k - 1 if k > mid else k + 1], float)
+    x = np.empty((1, 2))
+    for k in [mid] + [k for d in range(1, n) for k in (mid + d, mid - d) if 0 <= k < n]:
+        x[0] = q0 if k == mid else out[k - 1 if k > mid else k + 1]
+        R = Ri - _kc.BEYOND * w + (1.0 + 2.0 * _kc.BEYOND) * w * k / (n - 1)
         for _ in range(31):
-            g, dg, _ = _ke.margins_batch(_ke.MARGIN_GENERATED, mprm, x[None])
-            F = np.array([g[0, 0] + Ri - R[k], g[0, _kc.FILLET]])
-            if not np.all(np.isfinite(F)):
+            g, dg, _ = _ke.margins_batch(_ke.MARGIN_GENERATED, mprm, x)
+            f0, f1 = float(g[0, 0]) + Ri - R, float(g[0, _kc.FILLET])
+            a, b, c, d = dg[0, 0, 0], dg[0, 0, 1], dg[0, _kc.FILLET, 0], dg[0, _kc.FILLET, 1]
+            det = float(a * d - b * c)
+            if not (math.isfinite(f0) and math.isfinite(f1) and math.isfinite(det)) or det == 0.0:
                 return None
-            if np.max(np.abs(F)) < 1e-11:
+            if max(abs(f0), abs(f1)) < 1e-11:
                 break
-            J = np.array([dg[0, 0], dg[0, _kc.FILLET]])
-            with np.errstate(all="ignore"):
-                dx = np.linalg.solve(J, F) if np.all(np.isfinite(J)) and np.linalg.det(J) != 0.0 else None
-            if dx is None or not np.all(np.isfinite(dx)):
-                return None
-            x -= dx * min(1.0, 0.5 / max(np.max(np.abs(dx)), 1e-300))
+            d0, d1 = (f0 * d - f1 * b) / det, (a * f1 - c * f0) / det
+            s = min(1.0, 0.5 / max(abs(d0), abs(d1), 1e-300))
+            x[0, 0] -= s * d0
+            x[0, 1] -= s * d1
         else:
             return None
-        out[k] = x
+        out[k] = x[0]
     return out
 
 
