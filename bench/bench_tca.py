@@ -4,11 +4,12 @@ per-position scipy.optimize.fsolve of the same contact equations, measured in th
 Run:  python bench/bench_tca.py [--quick]
 Targets: under 50 ms (met); 1 ms for the face-milled pair (not met). Compiled: the surface-contact Newton with the jets
 of both flank kinds and of the crowned flank (quadratic normal deviation), the edge-contact Newton (analytic Jacobian,
-compiled boundary margins), solved together with the margins, TE, flank tests, screen and acceptance of its solutions
-in one call per batch, the path predictor, the line-contact test, the transfer-point iteration and the contact geometry
-of the ellipses (poses, Weingarten tensors, relative curvatures); what is left is the Python orchestration between them
-(continuation, edge candidates, transfer brackets, TE and statuses: numpy calls on small arrays) and the fixed cost of
-each compiled call.
+compiled boundary margins), solved together with the margins, TE, flank tests (with the generated flanks' limit-line
+test), screen and acceptance of its solutions in one call per batch, corners of the pinion's fillet junction that a
+proof excludes not solved, the surface contacts' flank test, the path predictor, the line-contact test, the
+transfer-point iteration and the contact geometry of the ellipses (poses, Weingarten tensors, relative curvatures); what
+is left is the Python orchestration between them (continuation, edge candidates, transfer brackets, TE and statuses:
+numpy calls on small arrays) and the fixed cost of each compiled call.
 
 Cases: the crowned log-spiral pair (point contact), the exactly conjugate log-spiral pair (line contact) and the
 seed 001 face-milled pair with the locally synthesized pinion (drive side, as the job runs it: ``phased_for_pair``).

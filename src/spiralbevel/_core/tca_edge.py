@@ -45,6 +45,7 @@ __all__ = [
     "N_MARGINS",
     "margins",
     "margins_batch",
+    "orientation",
     "edge_assemble",
     "edge_update",
     "edge_newton_jets",
@@ -118,16 +119,29 @@ def margins(mkind, mprm, q0, q1, S, g, dg):
     dg[:, :] = math.nan
 
 
+@kernel(inline="always")   # one expression
+def orientation(S):
+    """(r_q0 x r_q1) . n of one jet ``S (3, 6)`` (columns r, n, r_q0, r_q1, ...), in the operation order of
+    ``meshing.generated_surface._orientation``: its sign tells the sheet of the envelope a generated point lies on
+    (``GeneratedSurface.on_sheet``)."""
+    return ((S[1, 2] * S[2, 3] - S[2, 2] * S[1, 3]) * S[0, 1] + (S[2, 2] * S[0, 3] - S[0, 2] * S[2, 3]) * S[1, 1]
+            + (S[0, 2] * S[1, 3] - S[1, 2] * S[0, 3]) * S[2, 1])
+
+
 @kernel
 def margins_batch(mkind, mprm, q):
-    """:func:`margins` at every row of ``q (m, 2)``: ``g (m, 4)``, ``dg (m, 4, 2)``."""
+    """:func:`margins` at every row of ``q (m, 2)``: ``g (m, 4)``, ``dg (m, 4, 2)``, and ``o (m,)`` the
+    :func:`orientation` of the jet the margins evaluate (a generated flank, kind ``MARGIN_GENERATED``; NaN for
+    other kinds): the limit-line test of ``GeneratedSurface.on_sheet``."""
     m = q.shape[0]
     g = np.empty((m, N_MARGINS))
     dg = np.empty((m, N_MARGINS, 2))
+    o = np.empty(m)
     S = np.empty((3, 6))
     for i in range(m):
         margins(mkind, mprm, q[i, 0], q[i, 1], S, g[i], dg[i])
-    return g, dg
+        o[i] = orientation(S) if mkind == MARGIN_GENERATED else math.nan
+    return g, dg, o
 
 
 @kernel(inline="always")
@@ -298,12 +312,13 @@ def _corner_point(kind, prm, mkind, mprm, share, q0, q1, S, Sm, gm, dgm):
 
 @kernel
 def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c1, s1, x, member, edge, edge2, d, M2,
-                     h, tol, max_iter, rcond):
+                     h, tol, max_iter, rcond, skip):
     """Batched edge and corner Newton for two surfaces with compiled jets and margins, ``x (m, 5)`` updated in place
     (``share1``, ``share2``: see :func:`_jet_points`). A row with ``edge2 >= 0`` is a corner system
     (:mod:`spiralbevel._core.tca_corner`) of the boundaries ``edge`` and ``edge2``, each coded m N + e (boundary e
     of member m, N = :data:`N_MARGINS`; ``member`` is then ignored); otherwise the edge system of boundary ``edge``
-    of ``member``.
+    of ``member``. Rows with ``skip (m,) bool`` are not solved (not converged, ndot NaN, x unchanged: systems shown
+    to have no root, :mod:`spiralbevel._core.tca_corner_screen`).
 
     Returns
     -------
@@ -330,6 +345,9 @@ def edge_newton_jets(kind1, p1, mk1, mp1, share1, kind2, p2, mk2, mp2, share2, c
     work = np.empty((13, 6))
     iters = 0
     for i in range(m):
+        if skip[i]:
+            ndot[i] = math.nan
+            continue
         A = member[i]
         corner = edge2[i] >= 0
         for it in range(max_iter + 1):

@@ -17,9 +17,10 @@ import math
 import numpy as np
 
 from .jit import kernel
-from .tca_edge import N_MARGINS, edge_newton_jets, margins
+from .tca_corner_screen import FILLET, corner_excluded
+from .tca_edge import MARGIN_GENERATED, N_MARGINS, edge_newton_jets, margins, orientation
 
-__all__ = ["screen", "accept", "edge_try"]
+__all__ = ["screen", "accept", "edge_try", "orientation"]
 
 
 @kernel
@@ -122,9 +123,9 @@ def accept(ok, te, ii, jj, xs, floor, te_edge, x_edge, last, new, win):
 
 
 @kernel
-def edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, h, tol, max_iter, rcond, screen_it, tep,
-             phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te, conv, ndot, corner, ma, ea, mb, eb, good,
-             ok, new, win):
+def edge_try(kinds, p1, mp1, p2, mp2, ctol, junction, c1, s1, x, member, edge, d, M2, h, tol, max_iter, rcond,
+             screen_it, tep, phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te, conv, ndot, corner, ma, ea,
+             mb, eb, good, ok, new, win):
     """Solve and screen ``m`` edge/corner systems in one compiled call: the Newton of
     :func:`~spiralbevel._core.tca_edge.edge_newton_jets` on ``x (m, 5)`` in place, then (``screen_it`` != 0) all
     margins of both points, the TE, the flank tests and :func:`screen`.
@@ -135,8 +136,18 @@ def edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, h, t
         Jet kind, margin kind and "margins share the jet" flag of the pinion, then of the gear.
     p1, mp1, p2, mp2 : float arrays
         Jet and margin parameters of the pinion and the gear.
-    ctol : (2,) float
-        Per member: ``contains(q)`` is "every margin >= -ctol" (NaN fails).
+    ctol : (4,) float
+        Per member (pinion, gear): ``contains(q)`` is "every margin >= -ctol[member]" (NaN fails) and, where
+        ``ctol[2 + member]`` is not 0, "on the sheet": :func:`orientation` of the jet at q times ``ctol[2 + member]``
+        (the sign at the mean point) > 0 (NaN fails; ``GeneratedSurface.on_sheet``). The sheet test reads the jet that
+        the margins evaluate: only for margins of kind ``MARGIN_GENERATED`` that share the surface's jet. A converged
+        solution off the sheet of either member counts as not converged (``conv`` False), as in the separate steps of
+        :func:`spiralbevel.meshing.tca_edge.edge_stage`.
+    junction : (k, 3) float, mm
+        Samples of the pinion's fillet junction curve (:func:`~spiralbevel._core.tca_corner_screen.junction_curve`,
+        pinion frame), or k = 0: corner systems of that curve against the gear's toe, heel or top edge that
+        :func:`~spiralbevel._core.tca_corner_screen.corner_excluded` proves to have no root on the sampled stretch
+        are not solved (not converged).
     c1, s1 : (m,) float
         cos, sin of the effective pinion rotations.
     x : (m, 5) float
@@ -161,7 +172,8 @@ def edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, h, t
     te : (m,) float
         Output: TE of the solutions (rad).
     conv, ndot, corner, ma, ea, mb, eb, good, ok, new, win :
-        Output, as :func:`screen` (``conv``, ``ndot``: as the Newton returns them).
+        Output, as :func:`screen` (``conv``, ``ndot``: as the Newton returns them; with ``screen_it``, ``conv`` also
+        False off the sheet).
     """
     m = x.shape[0]
     N = N_MARGINS
@@ -176,8 +188,13 @@ def edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, h, t
         else:
             ed[i] = edge[i]
             ed2[i] = -1
+    skip = np.zeros(m, np.bool_)
+    if junction.shape[0] >= 3 and kinds[1] == MARGIN_GENERATED and kinds[4] == MARGIN_GENERATED:
+        for i in range(m):   # the pinion's fillet junction (boundary FILLET) against the gear's toe, heel or top
+            if ed2[i] >= 0 and ed[i] == FILLET and N <= ed2[i] <= N + 2:
+                skip[i] = corner_excluded(junction, c1[i], s1[i], d, M2, mp2, ed2[i] - N)
     cv, nd, _ = edge_newton_jets(kinds[0], p1, kinds[1], mp1, kinds[2] != 0, kinds[3], p2, kinds[4], mp2,
-                                 kinds[5] != 0, c1, s1, x, member, ed, ed2, d, M2, h, tol, max_iter, rcond)
+                                 kinds[5] != 0, c1, s1, x, member, ed, ed2, d, M2, h, tol, max_iter, rcond, skip)
     for i in range(m):
         conv[i] = cv[i]
         ndot[i] = nd[i]
@@ -189,7 +206,11 @@ def edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, h, t
     C1 = np.empty(m, np.bool_)
     for i in range(m):
         margins(kinds[1], mp1, x[i, 0], x[i, 1], S, G0[i], dg)
+        on = ctol[2] == 0.0 or orientation(S) * ctol[2] > 0.0   # S: the pinion's jet (margins of a generated flank)
         margins(kinds[4], mp2, x[i, 2], x[i, 3], S, G1[i], dg)
+        on = on and (ctol[3] == 0.0 or orientation(S) * ctol[3] > 0.0)
+        if not on:   # past a limit line of generation: no contact of the real teeth
+            conv[i] = False
         in0 = conv[i]
         in1 = conv[i]
         for e in range(N):

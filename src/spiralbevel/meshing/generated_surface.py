@@ -69,7 +69,7 @@ class GeneratedSurface:
     def contains_margin_tol(self):
         """``EDGE_TOL``: the margin part of :meth:`contains` is "every compiled margin (``boundary_jet``) >= -EDGE_TOL";
         None for a per-system offset law (no compiled margins). (:meth:`contains` also tests :meth:`on_sheet`, which
-        the compiled edge screen does not: TCA screens such surfaces by the separate steps.)"""
+        the compiled edge screen applies from the same jet with the sign :meth:`_sheet_sign`.)"""
         return None if self._prm() is None else EDGE_TOL
 
     @property
@@ -156,7 +156,7 @@ class GeneratedSurface:
         if b is not None:
             from .._core import tca_edge as _ke
 
-            g, _ = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(params.reshape(-1, 2)))
+            g = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(params.reshape(-1, 2)))[0]
             return g.reshape(params.shape[:-1] + (4,))
         S, u, _ = self._jet(params)
         r = S[..., 0]

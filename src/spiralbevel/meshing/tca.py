@@ -43,8 +43,9 @@ from .._core import tca_ellipse as _e
 from .._core import tca_predict as _p
 from ..errors import DesignError, NoContactError, Problem
 from .contact_problem import ContactProblem
-from .contact_surface import surface_contains, surface_derivatives
+from .contact_surface import surface_derivatives
 from .tca_edge import edge_stage
+from .tca_edge_solve import flank_contains
 from .tca_transfer import exact_transfers
 from .ellipse import GLEASON_APPROACH
 from .misalignment import Misalignment
@@ -303,7 +304,7 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     # by a blade: on its straight edge or fillet (not beyond the blade tip) where the equation of meshing of
     # generation has a root; past the tip Newton can converge to a spurious touch of the extended surfaces below the
     # root
-    test = surface_contains if flank_bounds else _on_blade
+    test = flank_contains if flank_bounds else _on_blade
     if iv.size:
         inside[iv] = test(pinion, x[iv, 0:2])
         iv = iv[inside[iv]]

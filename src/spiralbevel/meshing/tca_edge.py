@@ -30,7 +30,7 @@ import numpy as np
 
 from .._core import tca_edge_screen as _ks
 from .tca_edge_solve import _all_margins, corner_index, corner_split, margins_of, solve_edge_contacts  # noqa: F401
-from .tca_edge_solve import _H_TAU, _RCOND, _setup, compiled_args
+from .tca_edge_solve import _H_TAU, _RCOND, _setup, compiled_args, junction_samples
 
 __all__ = ["solve_edge_contacts", "edge_stage", "corner_split", "corner_index"]
 
@@ -118,9 +118,9 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         return x_edge, te_edge, label
     _, k1, K, _, _ = _setup(prob)  # boundaries of the pinion, of both members
     # the whole solve and screen of a batch in one compiled call where both surfaces have compiled jets and margins
-    # and a margin test as ``contains``, and the TE's frame is given
+    # and a margin test (with the limit-line test of a generated flank) as ``contains``, and the TE's frame is given
     fast = compiled_args(prob)
-    if fast is not None and (te_frame is None or min(fast[5]) < 0):
+    if fast is not None and (te_frame is None or min(fast[5][:2]) < 0):
         fast = None
     if fast is not None:
         d_, M2_, _ = prob._const
@@ -153,7 +153,8 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
             xs = np.array(x0, float, order="C").reshape(-1, 5)
             G0, G1, te = np.empty((k, 4)), np.empty((k, 4)), np.empty(k)
             conv, ndot = np.empty(k, bool), np.empty(k)
-            _ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, np.cos(phi_eff), np.sin(phi_eff), xs, mem, ee, d_, M2_,
+            _ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, junction_samples(prob, mem, ee), np.cos(phi_eff),
+                         np.sin(phi_eff), xs, mem, ee, d_, M2_,
                          _H_TAU, tol, 30, _RCOND, 1, tep, phi1c, pairs_f, ii, jj, floor, te_edge, x_edge, last, G0, G1,
                          te, conv, ndot, corner, ma, ea, mb, eb, good, ok, new, win)
             gg = (G0, G1)

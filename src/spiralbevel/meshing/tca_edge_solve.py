@@ -5,15 +5,18 @@ compiled iterations (margins without ``boundary_jet``: ``boundary_margins`` with
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .._core import tca_batch as _b
 from .._core import tca_edge as _ke
+from .._core import tca_corner_screen as _kc
 from .._core import tca_edge_screen as _ks
 from .._core.jets import GENERATED
-from .contact_surface import surface_derivatives
+from .contact_surface import surface_contains, surface_derivatives
 
-__all__ = ["solve_edge_contacts", "corner_split", "corner_index"]
+__all__ = ["solve_edge_contacts", "corner_split", "corner_index", "flank_contains"]
 
 #: step of the forward difference of the curve tangent (surface parameters), and of the central difference of the
 #: margin gradient of surfaces without compiled margins
@@ -36,8 +39,22 @@ def _boundary(surface):
 
 
 def _shares(kind, prm, b):
-    """True where the margins ``b`` of a generated flank evaluate the surface's own jet ``(kind, prm)``."""
-    return bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and np.array_equal(b[1][8:], prm))
+    """True where the margins ``b`` of a generated flank evaluate the surface's own jet ``(kind, prm)`` (the same
+    parameters; a straight blade has NaN in its arc-centre slots, which are equal here). Kept for the last few pairs
+    of parameter arrays (held, so that their ids are not reused)."""
+    key = (kind, id(prm), id(b[1]))
+    hit = _SHARES.get(key)
+    if hit is not None and hit[0] is prm and hit[1] is b[1]:
+        return hit[2]
+    out = bool(kind == GENERATED and b[0] == _ke.MARGIN_GENERATED and b[1].shape[0] == prm.shape[0] + 8
+               and np.array_equal(b[1][8:], prm, equal_nan=True))
+    if len(_SHARES) >= 16:
+        _SHARES.clear()
+    _SHARES[key] = (prm, b[1], out)
+    return out
+
+
+_SHARES = {}
 
 
 def _setup(prob):
@@ -59,8 +76,10 @@ def _setup(prob):
 
 def compiled_args(prob):
     """Arguments of :func:`spiralbevel._core.tca_edge_screen.edge_try` fixed by the problem (kept on it): the kinds
-    (6,), the jet and margin parameters of both members and the tolerances (2,) of their ``contains`` as a margin test
-    (-1 where ``contains`` is no such test); None where the edge Newton does not run entirely in compiled code."""
+    (6,), the jet and margin parameters of both members and their flank tests ``ctol (4,)``: the tolerances of
+    ``contains`` as a margin test (-1 where ``contains`` is no such test) and the sheet sign of a generated flank's
+    limit-line test ``on_sheet`` (0 for a surface without one); None where the edge Newton does not run entirely in
+    compiled code."""
     s = prob.__dict__.get("_edge_args")
     if s is None:
         (b1, b2), _, _, compiled, (sh1, sh2) = _setup(prob)
@@ -68,15 +87,124 @@ def compiled_args(prob):
             s = ()
         else:
             (k1, p1), (k2, p2) = prob._jets
-            # a surface with a limit-line test (``on_sheet``, part of its ``contains``) is screened by the separate
-            # steps, which apply it: the compiled screen tests the margins alone
-            ct = [None if hasattr(sf, "on_sheet") else getattr(sf, "contains_margin_tol", None)
-                  for sf in (prob.pinion, prob.gear)]
+            ct = [_flank_test(sf, sh) for sf, sh in ((prob.pinion, sh1), (prob.gear, sh2))]
             s = (np.array([k1, b1[0], int(sh1), k2, b2[0], int(sh2)], np.int64), np.ascontiguousarray(p1, float),
                  b1[1], np.ascontiguousarray(p2, float), b2[1],
-                 np.array([-1.0 if t is None else float(t) for t in ct]))
+                 np.array([-1.0 if t is None else t[0] for t in ct] + [0.0 if t is None else t[1] for t in ct]))
         prob._edge_args = s
     return s or None
+
+
+def _flank_test(surface, shares):
+    """(margin tolerance, sheet sign) of ``surface.contains`` as the compiled screen applies it, or None where it
+    cannot: ``contains`` is "every margin >= -tol" (``contains_margin_tol``) and, with a limit-line test
+    ``on_sheet``, the orientation of the chart's tangents has the sign ``_sheet_sign()`` of the mean point (±1), read
+    from the jet that the margins evaluate (``shares``)."""
+    tol = getattr(surface, "contains_margin_tol", None)
+    if tol is None:
+        return None
+    if not hasattr(surface, "on_sheet"):
+        return float(tol), 0.0
+    sign = getattr(surface, "_sheet_sign", None)
+    sign = sign() if shares and sign is not None else math.nan
+    return (float(tol), float(sign)) if sign in (1.0, -1.0) else None
+
+
+def flank_contains(surface, q):
+    """``surface.contains(q)`` for ``q (m, 2)`` (all True without ``contains``): from one compiled call
+    (:func:`spiralbevel._core.tca_edge.margins_batch`: the margins and the orientation of their jet, the test of the
+    edge screen) where the surface's ``contains`` is its compiled margin test, with the limit-line test of a generated
+    flank; else the surface's own method."""
+    b = _boundary(surface) if getattr(surface, "contains_margin_tol", None) is not None else None
+    if b is None:
+        return surface_contains(surface, q)
+    t = getattr(surface, "_flank_test_src", None)
+    if t is None or t[0] is not b[1]:   # kept with the margin parameters it was derived for
+        jet = getattr(surface, "jet", None)
+        shares = jet is not None and _shares(int(jet[0]), np.asarray(jet[1], float), b)
+        t = (b[1], _flank_test(surface, shares))
+        try:
+            surface._flank_test_src = t
+        except AttributeError:   # a frozen surface: derived again at the next call
+            pass
+    if t[1] is None:
+        return surface_contains(surface, q)
+    tol, sheet = t[1]
+    g, _, o = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float).reshape(-1, 2))
+    with np.errstate(invalid="ignore"):
+        out = np.all(g >= -tol, axis=1)
+        if sheet != 0.0:
+            out &= o * sheet > 0.0
+    return out
+
+
+#: corner systems of the pinion's fillet junction against the gear's toe, heel or top edge that the proof of
+#: :mod:`spiralbevel._core.tca_corner_screen` shows to have no root are not solved (False: every system is solved)
+CORNER_PROOF = True
+_NO_JUNCTION = np.zeros((0, 3))
+
+
+def _junction_curve(mprm, q0):
+    """Parameters (n, 2) of the fillet junction curve (u = u_j) of a generated flank with margins ``mprm`` (kind
+    ``MARGIN_GENERATED``) at n = :data:`~spiralbevel._core.tca_corner_screen.N_SAMPLES` cone distances R evenly from
+    R_i - b w to R_e + b w (w = R_e - R_i, b = :data:`~spiralbevel._core.tca_corner_screen.BEYOND`), or None where a
+    point is not found. Each point solves R(q) = R_k and u(q) = u_j (margins toe and fillet, analytic gradients) by
+    Newton to 1e-11, the middle one from ``q0 (2,)``, the others marched outward from it (steps of at most 0.5 rad).
+    Run once per flank (a few hundred calls of the compiled margins)."""
+    n, Ri, Re = _kc.N_SAMPLES, float(mprm[2]), float(mprm[3])
+    w = Re - Ri
+    out = np.empty((n, 2))
+    mid = n // 2
+    x = np.empty((1, 2))
+    for k in [mid] + [k for d in range(1, n) for k in (mid + d, mid - d) if 0 <= k < n]:
+        x[0] = q0 if k == mid else out[k - 1 if k > mid else k + 1]
+        R = Ri - _kc.BEYOND * w + (1.0 + 2.0 * _kc.BEYOND) * w * k / (n - 1)
+        for _ in range(31):
+            g, dg, _ = _ke.margins_batch(_ke.MARGIN_GENERATED, mprm, x)
+            f0, f1 = float(g[0, 0]) + Ri - R, float(g[0, _kc.FILLET])
+            a, b, c, d = dg[0, 0, 0], dg[0, 0, 1], dg[0, _kc.FILLET, 0], dg[0, _kc.FILLET, 1]
+            det = float(a * d - b * c)
+            if not (math.isfinite(f0) and math.isfinite(f1) and math.isfinite(det)) or det == 0.0:
+                return None
+            if max(abs(f0), abs(f1)) < 1e-11:
+                break
+            d0, d1 = (f0 * d - f1 * b) / det, (a * f1 - c * f0) / det
+            s = min(1.0, 0.5 / max(abs(d0), abs(d1), 1e-300))
+            x[0, 0] -= s * d0
+            x[0, 1] -= s * d1
+        else:
+            return None
+        out[k] = x[0]
+    return out
+
+
+def junction_samples(prob, member, edge):
+    """Samples (k, 3) mm of the pinion's fillet junction curve (pinion frame) for the corner proof of
+    :func:`spiralbevel._core.tca_corner_screen.corner_excluded`, computed once per flank (kept on it with the margin
+    parameters they were computed for, and on ``prob``); k = 0 (no proof) where the pinion is no generated flank with
+    compiled margins or its junction curve is not found, and, before they are computed, where none of the systems
+    ``(member (m,), edge (m,))`` is such a corner (``edge_try`` reads the samples only at those corners)."""
+    got = prob.__dict__.get("_junction")
+    if got is not None:
+        return got
+    (b, _), k1, K, _, _ = _setup(prob)
+    if not CORNER_PROOF or b is None or b[0] != _ke.MARGIN_GENERATED or k1 != _ke.N_MARGINS:
+        prob._junction = _NO_JUNCTION
+        return _NO_JUNCTION
+    surface = prob.pinion
+    cached = getattr(surface, "_junction_src", None)
+    if cached is None or cached[0] is not b[1]:
+        lo = corner_index(prob, (0, _kc.FILLET), (1, 0))   # ... with the gear's toe, heel (lo + 1) and top (lo + 2)
+        if not np.any((member == 0) & (edge >= lo) & (edge <= lo + 2)):
+            return _NO_JUNCTION
+        q = _junction_curve(b[1], np.asarray(surface.reference_params, float))
+        cached = (b[1], _NO_JUNCTION if q is None else np.ascontiguousarray(surface.evaluate(q)[0]), q)
+        try:
+            surface._junction_src = cached
+        except AttributeError:   # a frozen surface: sampled again for the next problem
+            pass
+    prob._junction = cached[1]
+    return cached[1]
 
 
 #: placeholders of the screening arguments of ``edge_try`` when it only solves (``screen_it`` 0)
@@ -113,7 +241,7 @@ def _margin_jets(surface, q, e):
     b = _boundary(surface)
     m = np.arange(len(q))
     if b is not None:
-        g, dg = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))
+        g, dg, _ = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float))
         return g[m, e], dg[m, e]
     h = _H_PARAM
     st = np.stack([q, q + (h, 0), q - (h, 0), q + (0, h), q - (0, h)], 0)  # (5, m, 2)
@@ -247,7 +375,8 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
         conv, ndot = np.empty(m, bool), np.empty(m)
         tep, phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te = _no_screen()
         b0, i0 = np.zeros(0, bool), np.zeros(0, np.int64)
-        _ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, c1, s1, x, member, edge, d, M2, _H_TAU, tol, int(max_iter), _RCOND,
+        _ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, junction_samples(prob, member, edge), c1, s1, x, member, edge, d,
+                     M2, _H_TAU, tol, int(max_iter), _RCOND,
                      0, tep, phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te, conv, ndot, b0, i0, i0, i0,
                      i0, b0, b0, b0, b0)
         return x, conv, ndot
