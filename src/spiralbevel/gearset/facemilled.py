@@ -148,12 +148,15 @@ _ALL_DIRECTIONS = DEFAULT_PATH_DIRECTIONS + DEFAULT_LENGTHWISE_DIRECTIONS
 _CHECK_POSITIONS = 41   # as the job's TCA (run_pair_tca)
 
 
-def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK_POSITIONS) -> int:
+def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK_POSITIONS,
+                      between: bool = True) -> int:
     """Number of TCA positions over one mesh cycle at which the pair's contact is not inside both flanks.
 
     Counts positions with no real-flank contact and positions in edge contact (the contact point beyond a flank
     boundary: tooth top, fillet, toe or heel), from the TCA's physical-contact status; ``n_positions`` when the TCA
-    itself fails or the pinion flank does not cover the whole face.
+    itself fails or the pinion flank does not cover the whole face. With ``between``, when no position is off, an
+    edge contact that leads between the positions (at a tooth-pair transfer, :mod:`~spiralbevel.gearset.transfer_check`)
+    counts its finer positions in steps of the TCA (at least 1).
     """
     from ..errors import NoContactError
     from ..meshing.pair import meshing_pair
@@ -168,7 +171,12 @@ def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK
         res = solve_tca(pair.pinion, pair.gear, pair.kinematics, n_positions=n_positions, start=pair.start)
     except (NoContactError, ConvergenceError):
         return n_positions
-    return int(np.sum(~np.isfinite(res.te) | res.edge_contact))
+    off = int(np.sum(~np.isfinite(res.te) | res.edge_contact))
+    if off == 0 and between:   # a short edge contact between the positions, at a tooth-pair transfer (gearset/transfer_check.py)
+        from .transfer_check import FACTOR, short_edge_positions
+
+        off = -(-short_edge_positions(pair, res) // FACTOR)    # finer positions, in steps (at least 1 when any)
+    return off
 
 
 def _angle_deviation(blank, flank) -> float:
