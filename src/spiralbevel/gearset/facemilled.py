@@ -375,6 +375,17 @@ def _require_near_branch(res, pin):
                                iterations=res.iterations, residual=res.residual, last=None)
 
 
+def _root_on_cone(flank) -> bool:
+    """True when the flank's generated root lies nowhere more than ``CHECK_ROOT_MM`` below the root cone (the design
+    check ``gearset.root_cone``, 11 face stations)."""
+    from .root_cone import root_cone
+
+    try:
+        return not root_cone(flank).below
+    except (GeometryError, DesignError):
+        return False
+
+
 #: rank (positions off the flanks) of a default candidate that keeps the bearing inside but closes the tooth space
 #: (gearset/slot_open.py): after every candidate that keeps the bearing inside with the slot open, before any with a
 #: position off the flanks, so that when no candidate opens the slot the one taken without the rule is taken
@@ -449,7 +460,8 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
         if refit and 0 < off < _CHECK_POSITIONS:   # an edge contact: the root back on the root cone, a smaller
             res2 = fit_pinion_edge_radius(blank, lower_root(blank, res))    # fillet; kept if it helps
             off2 = off if res2 is res else bearing_off_flank(blank, res2.pinion_flank, gear.flank)
-            if off2 < off:
+            # (the root put on the root cone at toe, mean and heel can dip below it between them: not kept then)
+            if off2 < off and _root_on_cone(res2.pinion_flank):
                 res, off = res2, off2
         # M off the pitch point moves the pinion's mean-point angles off the design (by a few 0.01 deg): such a
         # candidate is taken only when it keeps the bearing inside the flanks and the angles within the check
