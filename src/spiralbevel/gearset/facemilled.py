@@ -172,10 +172,10 @@ def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK
     except (NoContactError, ConvergenceError):
         return n_positions
     off = int(np.sum(~np.isfinite(res.te) | res.edge_contact))
-    if off == 0 and between:   # a short edge contact between the positions, at a tooth-pair transfer (gearset/transfer_check.py)
+    if off == 0 and between:   # a short edge contact between the positions, at a tooth-pair transfer
         from .transfer_check import FACTOR, short_edge_positions
 
-        off = -(-short_edge_positions(pair, res) // FACTOR)    # finer positions, in steps (at least 1 when any)
+        off = -(-short_edge_positions(pair, res) // FACTOR)    # finer positions in steps (>= 1 if any)
     return off
 
 
