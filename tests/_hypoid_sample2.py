@@ -28,3 +28,27 @@ thickness_factor = 0.1
 [flank]
 kind = "face-milled"
 """
+
+
+def sample2_blank():
+    """The hypoid blank of Sample 2 (``compute_blank``), its own face width warning silenced (b2 = 30 mm exceeds
+    0.3 Re2: the standard's sample as published)."""
+    import warnings
+
+    from spiralbevel.design.blank import BlankInput, compute_blank
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return compute_blank(BlankInput(**SAMPLE2))
+
+
+def sample2_concave_pinion(blank, flanks, eta, semi_major_axis, te_magnitude):
+    """The pinion concave flank of Sample 2 synthesized by ``synthesize_hypoid_pinion`` against the gear convex flank
+    of ``flanks`` (``hypoid_basic_flanks(blank)``), from the pinion's basic cutter and settings (eta rad,
+    semi_major_axis mm, te_magnitude rad)."""
+    from spiralbevel.conventions import Member, Side
+    from spiralbevel.meshing.synthesis.hypoid_local import synthesize_hypoid_pinion
+
+    c, s, _, _ = flanks[(Member.PINION, Side.CONCAVE)]
+    return synthesize_hypoid_pinion(flanks[(Member.GEAR, Side.CONVEX)][2], c, s, blank, eta=eta,
+                                    semi_major_axis=semi_major_axis, te_magnitude=te_magnitude)

@@ -1,26 +1,20 @@
 """The default synthesis search is bounded: when no local synthesis succeeds, at most DEFAULT_MAX_SYNTHESES are tried
 per side, and the error names the cause and the [synthesis] keys to give."""
 
-import warnings
 
 import pytest
 
 from spiralbevel.errors import ConvergenceError
-from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
-from spiralbevel.job.blank import blank_from_design
 from spiralbevel.meshing import synthesis as syn
 from _design_12x41 import design_12x41
+from _designs import basic_setups
 
 DESIGN = design_12x41()
 
 
 def test_failing_syntheses_are_bounded_and_named(monkeypatch):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        spec = parse_design(DESIGN)
-        blank = blank_from_design(spec)
-        setups = fm._basic_setups(spec, blank)
+    spec, blank, setups = basic_setups(DESIGN)
     calls = []
 
     def fail(*args, **kw):

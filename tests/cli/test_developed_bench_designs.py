@@ -20,6 +20,7 @@ from typer.testing import CliRunner
 
 from spiralbevel.cli import app
 from spiralbevel.job.facemilled import DEFAULT_SYNTHESIS
+from _designs import basic_design
 
 runner = CliRunner()
 
@@ -30,21 +31,7 @@ DESIGNS = {
     "near_zero_spiral": (18, 56, 95.4, 8.41, 69.5, 2.1, 220),
 }
 
-TEMPLATE = """
-title = "{z1}/{z2} beta {beta} deg"
-[gear_set]
-pinion_teeth = {z1}
-gear_teeth = {z2}
-shaft_angle = {sigma}
-module = {m}
-face_width = {b}
-normal_pressure_angle = 20
-mean_spiral_angle = {beta}
-pinion_hand = "RH"
-cutter_radius = {rc}
-[flank]
-kind = "face-milled"
-[output]
+OUTPUT = """[output]
 grid = [9, 5]
 plots = false
 stl = false
@@ -56,7 +43,8 @@ def case(request, tmp_path_factory):
     z1, z2, sigma, m, b, beta, rc = DESIGNS[request.param]
     d = tmp_path_factory.mktemp(request.param)
     f = d / "d.toml"
-    f.write_text(TEMPLATE.format(z1=z1, z2=z2, sigma=sigma, m=m, b=b, beta=beta, rc=rc))
+    f.write_text(basic_design(z1, z2, shaft_angle=sigma, module=m, face_width=b, mean_spiral_angle=beta, hand="RH",
+                              cutter_radius=rc, title=f"{z1}/{z2} beta {beta} deg") + OUTPUT)
     result = runner.invoke(app, ["run", str(f), "-o", str(d / "out"), "-q"])
     assert result.exit_code == 0, result.output
     return z1, beta, json.loads((d / "out" / "report.json").read_text()), request.param

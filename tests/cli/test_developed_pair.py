@@ -10,23 +10,11 @@ from typer.testing import CliRunner
 
 from spiralbevel.cli import app
 from spiralbevel.job.facemilled import DEFAULT_SYNTHESIS
+from _design_12x41 import design_12x41
 
 runner = CliRunner()
 
-DESIGN = """
-title = "12/41 basic data"
-[gear_set]
-pinion_teeth = 12
-gear_teeth = 41
-shaft_angle = {sigma}
-module = 5
-face_width = 30
-normal_pressure_angle = 20
-mean_spiral_angle = 35
-pinion_hand = "{hand}"
-[flank]
-kind = "face-milled"
-[output]
+OUTPUT = """[output]
 grid = [9, 5]
 plots = false
 stl = false
@@ -37,7 +25,7 @@ stl = false
 def report(request, tmp_path_factory):
     d = tmp_path_factory.mktemp("dev")
     f = d / "d.toml"
-    f.write_text(DESIGN.format(sigma=request.param[0], hand=request.param[1]))
+    f.write_text(design_12x41(shaft_angle=request.param[0], hand=request.param[1], title="12/41 basic data") + OUTPUT)
     result = runner.invoke(app, ["run", str(f), "-o", str(d / "out"), "-q"])
     assert result.exit_code == 0, result.output
     return json.loads((d / "out" / "report.json").read_text())

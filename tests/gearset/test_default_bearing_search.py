@@ -15,7 +15,6 @@ both sides at 21 positions with the flank grids (``run_pair_tca``, the bench's c
 """
 
 import math
-import warnings
 
 import pytest
 
@@ -23,39 +22,19 @@ from spiralbevel.conventions import Member
 from spiralbevel.gearset import facemilled as gfm
 from spiralbevel.gearset.tca import run_pair_tca
 from spiralbevel.generation.basic_settings_solve import flank_fit
-from spiralbevel.io.design_file import parse_design
-from spiralbevel.job import facemilled as fm
-from spiralbevel.job.blank import blank_from_design
-
-TEMPLATE = """
-title = "bench design"
-[gear_set]
-pinion_teeth = {z1}
-gear_teeth = {z2}
-shaft_angle = {sigma}
-module = {m}
-face_width = {b}
-normal_pressure_angle = 20
-mean_spiral_angle = {beta}
-pinion_hand = "{hand}"
-cutter_radius = {rc}
-[flank]
-kind = "face-milled"
-"""
+from _designs import basic_design, developed
 
 #: bench_robustness.py 100 2, designs 73 and 96 (the sample's values as the bench writes them)
 DESIGNS = {
-    "38x92": dict(z1=38, z2=92, sigma=106.549, m=4.809, b=50.090, beta=30.452, hand="RH", rc=193.85),
-    "12x54": dict(z1=12, z2=54, sigma=91.633, m=8.491, b=68.598, beta=4.859, hand="LH", rc=218.94),
+    "38x92": basic_design(38, 92, shaft_angle=106.549, module=4.809, face_width=50.090, mean_spiral_angle=30.452,
+                          hand="RH", cutter_radius=193.85, title="bench design"),
+    "12x54": basic_design(12, 54, shaft_angle=91.633, module=8.491, face_width=68.598, mean_spiral_angle=4.859,
+                          hand="LH", cutter_radius=218.94, title="bench design"),
 }
 
 
 def _develop(name):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        spec = parse_design(TEMPLATE.format(**DESIGNS[name]))
-        blank = blank_from_design(spec)
-        setups, synth = fm.setup_flanks(spec, blank, with_synthesis=True)
+    _, blank, setups, synth = developed(DESIGNS[name])
     return blank, setups, synth
 
 

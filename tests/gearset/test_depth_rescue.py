@@ -8,7 +8,6 @@ once at a quarter of the middle of the working depth and synthesizes again at th
 """
 
 import math
-import warnings
 
 import pytest
 
@@ -18,28 +17,10 @@ from spiralbevel.gearset import depth_rescue as dr
 from spiralbevel.gearset import facemilled as gfm
 from spiralbevel.gearset.tca import run_pair_tca
 from spiralbevel.generation.basic_settings_solve import flank_fit
-from spiralbevel.io.design_file import parse_design
-from spiralbevel.job.blank import blank_from_design
-from spiralbevel.meshing import synthesis as syn
 from spiralbevel.meshing.tca_checks import parabolic_level
-from spiralbevel.meshing.tca_result import ARCSEC
+from _designs import DESIGN_16X87, coast_candidate_16x87
+from _designs import developed as develop
 
-#: bench_robustness.py 100 2, design 22, as the bench writes it
-DESIGN_16X87 = """
-title = "sample"
-[gear_set]
-pinion_teeth = 16
-gear_teeth = 87
-shaft_angle = 66.706
-module = 1.723
-face_width = 24.312
-normal_pressure_angle = 20
-mean_spiral_angle = 9.614
-pinion_hand = "LH"
-cutter_radius = 61.48
-[flank]
-kind = "face-milled"
-"""
 
 
 def test_deepest_allowed_fraction_on_a_linear_deviation_law():
@@ -96,26 +77,13 @@ def test_rescue_keeps_to_its_budget():
 
 @pytest.fixture(scope="module")
 def developed():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        spec = parse_design(DESIGN_16X87)
-        blank = blank_from_design(spec)
-        setups, synth = gfm.setup_flanks(spec, blank, with_synthesis=True)
-    return spec, blank, setups, synth
+    return develop(DESIGN_16X87)
 
 
-def test_pitch_point_candidate_touches_the_pinion_fillet(developed):
+def test_pitch_point_candidate_touches_the_pinion_fillet():
     # the reason for the rescue: the coast candidate with the fewest edge positions through the pitch point
     # (path -55 deg, modified roll free) runs onto the pinion's fillet
-    spec, blank, _, _ = developed
-    basic = gfm._basic_setups(spec, blank)
-    s1, s2 = gfm.PAIR_SIDES["coast"]
-    gear, pin = basic[(Member.GEAR, s2)], basic[(Member.PINION, s1)]
-    b = float(blank.b2)
-    res = syn.synthesize_pinion(gear.cutter, gear.settings, blank, side=s1, eta=math.radians(-55.0),
-                                semi_major_axis=0.15 * b, te_magnitude=8.0 * ARCSEC,
-                                approach=gfm.DEFAULT_SYNTHESIS["approach_fraction"] * b, free=syn.FREE_MODIFIED_ROLL,
-                                pinion_cutter_hint=pin.cutter, pinion_settings_hint=pin.settings)
+    blank, gear, res = coast_candidate_16x87()
     assert 0 < gfm.bearing_off_flank(blank, res.pinion_flank, gear.flank) < gfm._CHECK_POSITIONS
 
 

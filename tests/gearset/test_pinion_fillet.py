@@ -23,17 +23,9 @@ from spiralbevel.job import facemilled as fm
 from spiralbevel.job.blank import blank_from_design
 from spiralbevel.machine.default_cutter import EDGE_RADIUS_FILL
 from _design_12x41 import design_12x41
+from _synthesis_stand_in import Result
 
 DESIGN = design_12x41()
-
-
-@dataclasses.dataclass(frozen=True)
-class Result:
-    """The fields of a SynthesisResult that the refit reads and replaces."""
-
-    pinion_cutter: object
-    pinion_settings: object
-    pinion_flank: object
 
 
 @pytest.fixture(scope="module")

@@ -38,23 +38,11 @@ from spiralbevel.meshing import synthesis as syn
 from spiralbevel.meshing.pair import meshing_pair
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC
+from _designs import basic_design
 
 #: bench_robustness.py 40 1, design 31, as the bench writes it
-DESIGN_10X54 = """
-title = "sample"
-[gear_set]
-pinion_teeth = 10
-gear_teeth = 54
-shaft_angle = 79.000
-module = 10.088
-face_width = 46.459
-normal_pressure_angle = 20
-mean_spiral_angle = 1.944
-pinion_hand = "RH"
-cutter_radius = 292.34
-[flank]
-kind = "face-milled"
-"""
+DESIGN_10X54 = basic_design(10, 54, shaft_angle="79.000", module="10.088", face_width="46.459",
+                            mean_spiral_angle="1.944", hand="RH", cutter_radius="292.34", title="sample")
 
 
 def _synthesize(blank, basic, name):

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import warnings
 
 import numpy as np
 import pytest
@@ -27,45 +26,19 @@ from spiralbevel.gearset.pinion_fillet import raise_root
 from spiralbevel.gearset.root_cone import (CAUSE, ROOT_STATIONS, root_cone, root_cone_checks,
                                            root_cone_messages, root_heights)
 from spiralbevel.io.design_file import parse_design
-from spiralbevel.job import facemilled as fm
-from spiralbevel.job.blank import blank_from_design
 from _design_12x41 import design_12x41
+from _designs import basic_design, basic_setups, developed
+from _synthesis_stand_in import Result
 
 #: design 10 of ``bench_robustness.py 40 1``: the default synthesis' drive pinion cut 1.754 mm below the root cone
-DESIGN_11x25 = """
-title = "11/25 of the robustness bench (bench_robustness.py 40 1, design 10)"
-[gear_set]
-pinion_teeth = 11
-gear_teeth = 25
-shaft_angle = {sigma}
-module = {m}
-face_width = {b}
-normal_pressure_angle = 20
-mean_spiral_angle = {beta}
-pinion_hand = "LH"
-cutter_radius = {rc}
-[flank]
-kind = "face-milled"
-"""
-
-
-@dataclasses.dataclass(frozen=True)
-class Result:
-    """The fields of a SynthesisResult that the placement reads and replaces."""
-
-    pinion_cutter: object
-    pinion_settings: object
-    pinion_flank: object
+DESIGN_11x25 = basic_design(11, 25, shaft_angle="106.111", module="10.144", face_width="20.500",
+                            mean_spiral_angle="10.314", hand="LH", cutter_radius="100.52",
+                            title="11/25 of the robustness bench (bench_robustness.py 40 1, design 10)")
 
 
 @pytest.fixture(scope="module")
 def case():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        spec = parse_design(design_12x41())
-        blank = blank_from_design(spec)
-        setups = fm._basic_setups(spec, blank)
-    return spec, blank, setups
+    return basic_setups(design_12x41())
 
 
 def brute_root(flank, R):
@@ -181,12 +154,7 @@ def test_messages_name_the_key(case):
 def test_developed_pair_roots_on_the_cone():
     """The default synthesis of the 11/25 design puts every root on the root cone (the drive pinion's lay 1.754 mm
     below it before the placement), and the report section says so."""
-    text = DESIGN_11x25.format(sigma="106.111", m="10.144", b="20.500", beta="10.314", rc="100.52")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        spec = parse_design(text)
-        blank = blank_from_design(spec)
-        setups = fm.setup_flanks(spec, blank)
+    _, blank, setups, _ = developed(DESIGN_11x25)
     checks = root_cone_checks(setups)
     assert all(not r.below and r.lowest > -1e-3 for r in checks.values())
     st = setups[(Member.PINION, Side.CONCAVE)]

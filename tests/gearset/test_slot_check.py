@@ -18,10 +18,10 @@ from spiralbevel.gearset import slot_check as sc
 from spiralbevel.gearset import slot_intrusion
 from spiralbevel.generation.flank import generate_flank
 from spiralbevel.io.design_file import parse_design
-from spiralbevel.job.blank import blank_from_design
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _design_12x41 import design_12x41  # noqa: E402
+from _designs import basic_design, basic_setups, developed  # noqa: E402
 
 ALL = [(m, s) for m in fm.MEMBERS for s in fm.SIDES]
 
@@ -29,9 +29,7 @@ ALL = [(m, s) for m in fm.MEMBERS for s in fm.SIDES]
 @pytest.fixture(scope="module")
 def basic():
     """The 12/41 design's derived cutters and solved basic settings (no synthesis, no refit)."""
-    spec = parse_design(design_12x41())
-    blank = blank_from_design(spec)
-    return spec, blank, fm._basic_setups(spec, blank)
+    return basic_setups(design_12x41())
 
 
 def _other(s):
@@ -299,20 +297,8 @@ def test_intrusion_matches_brute_force_sweep(basic):
 #: a 20/39 design of bench/bench_robustness.py (seed 2): the tip of the developed pinion's concave cutter's opposite
 #: blade runs 1.17 mm below the root cone, and its fillet climbs from -0.16 to +0.42 mm above it between the last two
 #: even rows in u, where a check on those rows alone saw it fit once the point width was narrowed to 1.015 mm
-DESIGN_20X39 = """
-[gear_set]
-pinion_teeth = 20
-gear_teeth = 39
-shaft_angle = 109.749
-module = 3.861
-face_width = 11.755
-normal_pressure_angle = 20
-mean_spiral_angle = 17.386
-pinion_hand = "LH"
-cutter_radius = 68.66
-[flank]
-kind = "face-milled"
-"""
+DESIGN_20X39 = basic_design(20, 39, shaft_angle="109.749", module="3.861", face_width="11.755",
+                            mean_spiral_angle="17.386", hand="LH", cutter_radius="68.66")
 
 
 def _without_root_raise(monkeypatch):
@@ -340,10 +326,8 @@ def test_steep_fillet_is_sampled_and_no_width_fits(monkeypatch):
     from spiralbevel.gearset.slot_open import SLOT_FLOOR
     from spiralbevel.machine.default_cutter import EDGE_RADIUS_FILL
 
-    spec = parse_design(DESIGN_20X39)
-    blank = blank_from_design(spec)
     _without_root_raise(monkeypatch)
-    st = fm.setup_flanks(spec, blank)
+    spec, blank, st, _ = developed(DESIGN_20X39)
     k = (Member.PINION, Side.CONCAVE)
     A = st[k]
 
@@ -379,20 +363,8 @@ def test_steep_fillet_is_sampled_and_no_width_fits(monkeypatch):
 #: a 16/23 design of bench/bench_robustness.py (seed 2) whose slot check could not be computed before the opposite
 #: blade's fillet was built from its tip line: the opposite blade of the developed pinion's convex cutter, generated
 #: with that side's synthesized settings, does not reach the pitch cone, where the flank grid starts
-DESIGN_16X23 = """
-[gear_set]
-pinion_teeth = 16
-gear_teeth = 23
-shaft_angle = 74.130
-module = 3.487
-face_width = 13.967
-normal_pressure_angle = 20
-mean_spiral_angle = 24.638
-pinion_hand = "RH"
-cutter_radius = 46.79
-[flank]
-kind = "face-milled"
-"""
+DESIGN_16X23 = basic_design(16, 23, shaft_angle="74.130", module="3.487", face_width="13.967",
+                            mean_spiral_angle="24.638", hand="RH", cutter_radius="46.79")
 
 
 def test_opposite_blade_off_the_pitch_cone_is_checked_against_sweep_and_exact_solves():
@@ -403,9 +375,7 @@ def test_opposite_blade_off_the_pitch_cone_is_checked_against_sweep_and_exact_so
     solve on the opposite flank (2e-3 mm, the interpolation); the refit then makes every cutter of the pair fit."""
     from spiralbevel.errors import GeometryError
 
-    spec = parse_design(DESIGN_16X23)
-    blank = blank_from_design(spec)
-    st, _ = fm.setup_flanks(spec, blank, with_synthesis=True)
+    _, blank, st, _ = developed(DESIGN_16X23)
     k = (Member.PINION, Side.CONVEX)
     A, B = st[k], st[(Member.PINION, Side.CONCAVE)]
     derived = float(A.source.split("(derived ")[1].split(" mm")[0])
@@ -425,20 +395,8 @@ def test_opposite_blade_off_the_pitch_cone_is_checked_against_sweep_and_exact_so
 
 #: a 23/34 design of bench/bench_robustness.py (seed 2, design 62): the developed pinion's concave cutter runs with
 #: its tip plane 1.42 mm below the root cone, and its opposite blade's tip with it, below the convex flank's root
-DESIGN_23X34 = """
-[gear_set]
-pinion_teeth = 23
-gear_teeth = 34
-shaft_angle = 108.690
-module = 4.168
-face_width = 19.214
-normal_pressure_angle = 20
-mean_spiral_angle = 15.134
-pinion_hand = "LH"
-cutter_radius = 54.77
-[flank]
-kind = "face-milled"
-"""
+DESIGN_23X34 = basic_design(23, 34, shaft_angle="108.690", module="4.168", face_width="19.214",
+                            mean_spiral_angle="15.134", hand="LH", cutter_radius="54.77")
 
 
 def test_opposite_blade_below_the_opposite_root_is_measured_from_that_root(monkeypatch):
@@ -456,10 +414,8 @@ def test_opposite_blade_below_the_opposite_root_is_measured_from_that_root(monke
     from spiralbevel.gearset.slot_open import SLOT_FLOOR
     from spiralbevel.machine.default_cutter import EDGE_RADIUS_FILL
 
-    spec = parse_design(DESIGN_23X34)
-    blank = blank_from_design(spec)
     _without_root_raise(monkeypatch)
-    st = fm.setup_flanks(spec, blank)
+    _, blank, st, _ = developed(DESIGN_23X34)
     k = (Member.PINION, Side.CONCAVE)
     A = st[k]
     dev = sc.slot_fit(blank, st, *k)

@@ -3,42 +3,24 @@ spiral angles), the (u, psi_c) chart of the generated flank folds, but the flank
 The (phi, psi_c) chart of the blade generates it through the fold; checked here against the equation of meshing,
 numerical tangents and a brute-force test of the cutter's swept material."""
 
-import warnings
 
 import numpy as np
 import pytest
 
 from _blade_sweep import penetration as blade_penetration
+from _designs import basic_design, basic_setups
 
 from spiralbevel.conventions import Member, Side
-from spiralbevel.io.design_file import parse_design
-from spiralbevel.job import facemilled as fm
-from spiralbevel.job.blank import blank_from_design
 
 # a low-spiral-angle design of the robustness bench (11/41, beta 8.1 deg) whose gear convex flank folds on the blade
-DESIGN = """
-[gear_set]
-pinion_teeth = 11
-gear_teeth = 41
-shaft_angle = 76.6
-module = 11.67
-face_width = 61.2
-normal_pressure_angle = 20
-mean_spiral_angle = 8.1
-pinion_hand = "RH"
-cutter_radius = 235
-[flank]
-kind = "face-milled"
-"""
+DESIGN = basic_design(11, 41, shaft_angle=76.6, module=11.67, face_width=61.2, mean_spiral_angle=8.1, hand="RH",
+                      cutter_radius=235)
 
 
 @pytest.fixture(scope="module")
 def flank():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        spec = parse_design(DESIGN)
-        blank = blank_from_design(spec)
-        return fm._basic_setups(spec, blank)[(Member.GEAR, Side.CONVEX)].flank
+    _, _, setups = basic_setups(DESIGN)
+    return setups[(Member.GEAR, Side.CONVEX)].flank
 
 
 def test_fold_lies_inside_the_face_and_the_flank_is_generated_through_it(flank):

@@ -2,33 +2,26 @@
 synthesis, generated with a blank offset; the member's view of the blank): known setting errors are recovered."""
 
 import math
-import warnings
 
 import numpy as np
 import pytest
 
 from spiralbevel.conventions import Member, Side
-from spiralbevel.design.blank import BlankInput, compute_blank
 from spiralbevel.design.hypoid_member import member_blank
 from spiralbevel.generation import generate_flank
 from spiralbevel.manufacturing.correction import apply_changes, correct_settings
 from spiralbevel.manufacturing.measurement import measure_deviation, measurement_grid
 from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks
-from spiralbevel.meshing.synthesis.hypoid_local import synthesize_hypoid_pinion
-from _hypoid_sample2 import SAMPLE2
+from _hypoid_sample2 import sample2_blank, sample2_concave_pinion
 
 R = math.radians
 TRUE = {"radial_setting": 0.05, "cradle_angle": R(0.01), "blank_offset": -0.03}
 
 
 def test_round_trip_recovers_known_setting_errors():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+    blank = sample2_blank()
     flanks = hypoid_basic_flanks(blank)
-    c, s, _, _ = flanks[(Member.PINION, Side.CONCAVE)]
-    syn = synthesize_hypoid_pinion(flanks[(Member.GEAR, Side.CONVEX)][2], c, s, blank, eta=R(6.0),
-                                   semi_major_axis=3.7, te_magnitude=6.0 * math.pi / 648000.0)
+    syn = sample2_concave_pinion(blank, flanks, R(6.0), 3.7, 6.0 * math.pi / 648000.0)
     view = member_blank(blank, Member.PINION)
     key = (Member.PINION, Side.CONCAVE)
     cutter, settings = syn.pinion_cutter, syn.pinion_settings

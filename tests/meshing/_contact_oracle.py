@@ -209,3 +209,33 @@ class Oracle:
             p2_best = np.where(win, p2, p2_best)
             mem = np.where(win, m, mem)
         return p2_best, mem
+
+
+def grid_box(surface, margin=0.02):
+    """Parameter box (2, 2) of a phased generated surface's real flank: the range of the flank's own 31 x 15 grid,
+    widened by ``margin`` of it at each end. The first parameter is the cutter angle phi of the (phi, psi_c) chart, or
+    u of the (u, psi_c) chart for a surface without ``cutter_angle`` (the multi-point control's)."""
+    g = surface.flank.grid(31, 15, curvature=False)
+    phi = surface.cutter_angle(g.theta, g.psi_c) if hasattr(surface, "cutter_angle") else g.u
+    lo, hi = np.array([phi.min(), g.psi_c.min()]), np.array([phi.max(), g.psi_c.max()])
+    d = margin * (hi - lo)
+    return np.stack([lo - d, hi + d], 1)
+
+
+def first_touch_phi2(oracle, res, idx):
+    """The oracle's gear rotation (J, P) rad of the first touch of each tooth pair of the TCA result ``res`` at its
+    positions ``idx`` (J,), in the TCA's gear angle (the pair's pitch added back); NaN where a pair does not touch."""
+    P = np.asarray(res.pairs)
+    phi = res.phi1[idx][:, None] + 2 * np.pi * P / oracle.z1
+    pinion, gear = oracle.s
+    p2e, _ = oracle.first_touch(phi.ravel(), res.drive_sign,
+                                (-oracle.z1 / oracle.z2 * phi.ravel(), pinion.reference_params, gear.reference_params))
+    return p2e.reshape(phi.shape) + 2 * np.pi * P / oracle.z2
+
+
+def lead_deviation(oracle, res, idx):
+    """TCA minus oracle leading contact (J,) rad of the gear at the positions ``idx``: lead = -drive * phi2 of the
+    contact that leads over the tooth pairs."""
+    p2 = first_touch_phi2(oracle, res, idx)
+    lead = np.max(np.where(np.isfinite(p2), -res.drive_sign * p2, -np.inf), axis=1)
+    return -res.drive_sign * res.phi2[idx] - lead

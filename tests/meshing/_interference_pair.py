@@ -16,23 +16,15 @@ draws the design from the bench's sampler, solves the basic settings and that lo
 from __future__ import annotations
 
 import math
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))   # tests/ (_designs), also when run as a script
+from _designs import basic_design  # noqa: E402
 
 #: design file of the sample (``bench_robustness.sample``, seed 2, design 51)
-DESIGN = """
-title = "sample"
-[gear_set]
-pinion_teeth = 11
-gear_teeth = 12
-shaft_angle = 62.918
-module = 10.701
-face_width = 25.452
-normal_pressure_angle = 20
-mean_spiral_angle = 29.908
-pinion_hand = "LH"
-cutter_radius = 92.29
-[flank]
-kind = "face-milled"
-"""
+DESIGN = basic_design(11, 12, shaft_angle="62.918", module="10.701", face_width="25.452", mean_spiral_angle="29.908",
+                      hand="LH", cutter_radius="92.29", title="sample")
 
 #: (member, side) -> (HeadCutter fields, MachineSettings fields) of the coast flanks (see the module docstring)
 SETTINGS = {('pinion', 'convex'): ({'point_radius': 98.32769953873743,
@@ -103,16 +95,6 @@ def _derive():
     pinion of the default synthesis' candidate that the job took before the TCA saw the interference (path direction
     -55 deg at the mean pitch point, settings ``offset``, the default TE level and ellipse; the job now moves on to
     another candidate)."""
-    import dataclasses
-    import pprint
-    import sys
-    from pathlib import Path
-
-    import numpy as np
-
-    sys.path.insert(0, str(Path(__file__).parents[2] / "bench"))
-    import bench_robustness as br
-
     from spiralbevel.conventions import Member, Side
     from spiralbevel.gearset import facemilled as fm
     from spiralbevel.io.design_file import parse_design
@@ -120,9 +102,7 @@ def _derive():
     from spiralbevel.meshing import synthesis as syn
     from spiralbevel.meshing.tca_result import ARCSEC
 
-    rng = np.random.default_rng(2)
-    for _ in range(52):
-        text, _label = br.sample(rng)
+    text = bench_sample(51)
     assert text == DESIGN, text
     spec = parse_design(text)
     blank = blank_from_design(spec)
@@ -134,9 +114,35 @@ def _derive():
                                 semi_major_axis=sy.semi_major_axis, te_magnitude=sy.te_magnitude * ARCSEC,
                                 approach=sy.approach, free=syn.FREE_OFFSET, depth=0.0,
                                 pinion_cutter_hint=pin.cutter, pinion_settings_hint=pin.settings)
+    print_settings([(("pinion", "convex"), res.pinion_cutter, res.pinion_settings),
+                    (("gear", "concave"), gear.cutter, gear.settings)])
+
+
+def bench_sample(design: int) -> str:
+    """The design-file text of sample ``design`` (counted from 0) of ``bench/bench_robustness.py 100 2`` (seed 2), as
+    the bench's sampler draws it."""
+    import sys
+    from pathlib import Path
+
+    import numpy as np
+
+    sys.path.insert(0, str(Path(__file__).parents[2] / "bench"))
+    import bench_robustness as br
+
+    rng = np.random.default_rng(2)
+    for _ in range(design + 1):
+        text, _label = br.sample(rng)
+    return text
+
+
+def print_settings(flanks):
+    """Print ``{(member, side): (HeadCutter fields, MachineSettings fields)}`` of ``flanks`` (((member, side) names,
+    cutter, settings) in turn) as a helper's ``SETTINGS`` is written."""
+    import dataclasses
+    import pprint
+
     out = {}
-    for key, cutter, settings in (("pinion", "convex"), res.pinion_cutter, res.pinion_settings), \
-            (("gear", "concave"), gear.cutter, gear.settings):
+    for key, cutter, settings in flanks:
         c = dataclasses.asdict(cutter)
         c["blade"] = cutter.blade.value
         if math.isinf(c["profile_radius"]):

@@ -14,24 +14,12 @@ draws the design from the bench's sampler, runs the job's flank setup with its s
 
 from __future__ import annotations
 
-from _interference_pair import build_pair
+from _interference_pair import bench_sample, build_pair, print_settings  # puts tests/ on the path
+from _designs import basic_design
 
 #: design file of the sample (``bench_robustness.sample``, seed 2, design 64)
-DESIGN = """
-title = "sample"
-[gear_set]
-pinion_teeth = 13
-gear_teeth = 20
-shaft_angle = 69.078
-module = 7.304
-face_width = 23.043
-normal_pressure_angle = 20
-mean_spiral_angle = 10.316
-pinion_hand = "RH"
-cutter_radius = 80.88
-[flank]
-kind = "face-milled"
-"""
+DESIGN = basic_design(13, 20, shaft_angle="69.078", module="7.304", face_width="23.043", mean_spiral_angle="10.316",
+                      hand="RH", cutter_radius="80.88", title="sample")
 
 #: (member, side) -> (HeadCutter fields, MachineSettings fields) of the coast flanks (see the module docstring)
 SETTINGS = {('pinion', 'convex'): ({'point_radius': 90.26802986784003,
@@ -77,17 +65,7 @@ def coast_pair():
 
 def _derive():
     """The cutters and settings of the coast flanks of the developed pair (printed as ``SETTINGS``)."""
-    import dataclasses
-    import math
-    import pprint
-    import sys
     import warnings
-    from pathlib import Path
-
-    import numpy as np
-
-    sys.path.insert(0, str(Path(__file__).parents[2] / "bench"))
-    import bench_robustness as br
 
     from spiralbevel.conventions import Member
     from spiralbevel.gearset.facemilled import PAIR_SIDES
@@ -95,24 +73,15 @@ def _derive():
     from spiralbevel.job import facemilled as fm
     from spiralbevel.job.blank import blank_from_design
 
-    rng = np.random.default_rng(2)
-    for _ in range(65):
-        text, _label = br.sample(rng)
+    text = bench_sample(64)
     assert text == DESIGN, text
     spec = parse_design(text)
     blank = blank_from_design(spec)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         setups, _ = fm.setup_flanks(spec, blank, with_synthesis=True)
-    out = {}
-    for m, s in zip((Member.PINION, Member.GEAR), PAIR_SIDES["coast"]):
-        st = setups[(m, s)]
-        c = dataclasses.asdict(st.cutter)
-        c["blade"] = st.cutter.blade.value
-        if math.isinf(c["profile_radius"]):
-            c["profile_radius"] = "inf"
-        out[(m.value, s.value)] = (c, dataclasses.asdict(st.settings))
-    pprint.pprint(out, width=116, sort_dicts=False)
+    print_settings([((m.value, s.value), setups[(m, s)].cutter, setups[(m, s)].settings)
+                    for m, s in zip((Member.PINION, Member.GEAR), PAIR_SIDES["coast"])])
 
 
 if __name__ == "__main__":

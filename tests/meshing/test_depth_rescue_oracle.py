@@ -8,36 +8,18 @@ angle deviation at 0.8 of the 0.05 deg check) the leading contact is a surface c
 position. The oracle finds the same leading contact as the TCA at the cycle ends, where the edge was.
 """
 
-import math
-import warnings
 
 import numpy as np
 import pytest
 
-from _contact_oracle import Oracle
+from _contact_oracle import Oracle, grid_box, lead_deviation
+from _designs import coast_candidate_16x87
 
-from spiralbevel.conventions import Member
-from spiralbevel.meshing import synthesis as syn
 from spiralbevel.meshing.generated_surface import phased_for_pair
 from spiralbevel.meshing.kinematics import BevelPairKinematics
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC, ContactStatus
 
-DESIGN = """
-title = "sample"
-[gear_set]
-pinion_teeth = 16
-gear_teeth = 87
-shaft_angle = 66.706
-module = 1.723
-face_width = 24.312
-normal_pressure_angle = 20
-mean_spiral_angle = 9.614
-pinion_hand = "LH"
-cutter_radius = 61.48
-[flank]
-kind = "face-milled"
-"""
 
 #: depth (mm) of M below the gear's pitch line that the default search's rescue chose for the coast side (above)
 DEPTH_MM = 0.0755
@@ -48,46 +30,16 @@ POSITIONS = np.array([0, 1, 2, 3, 20, 39, 40])
 TOL_ARCSEC = 1e-4
 
 
-def _box(flank):
-    """Parameter box (2, 2) of the phased surface's real flank, from the flank's grid, widened by 2 %."""
-    g = flank.flank.grid(31, 15, curvature=False)
-    p0 = flank.cutter_angle(g.theta, g.psi_c)
-    lo, hi = np.array([p0.min(), g.psi_c.min()]), np.array([p0.max(), g.psi_c.max()])
-    d = 0.02 * (hi - lo)
-    return np.stack([lo - d, hi + d], 1)
-
-
 def _lead_deviation(c1, c2, kin, res, idx):
     """TCA minus oracle leading contact (arcsec) at positions idx (as test_tca_oracle.py)."""
     from spiralbevel.meshing.misalignment import Misalignment
 
-    o = Oracle(c1, c2, _box(c1), _box(c2), kin.z1, kin.z2, Misalignment().axes(kin.shaft_angle))
-    P = np.asarray(res.pairs)
-    phi = res.phi1[idx][:, None] + 2 * np.pi * P / kin.z1
-    p2e, _ = o.first_touch(phi.ravel(), res.drive_sign, (-kin.z1 / kin.z2 * phi.ravel(), c1.reference_params,
-                                                          c2.reference_params))
-    p2 = p2e.reshape(phi.shape) + 2 * np.pi * P / kin.z2
-    lead = np.max(np.where(np.isfinite(p2), -res.drive_sign * p2, -np.inf), axis=1)
-    return (-res.drive_sign * res.phi2[idx] - lead) / ARCSEC
+    o = Oracle(c1, c2, grid_box(c1), grid_box(c2), kin.z1, kin.z2, Misalignment().axes(kin.shaft_angle))
+    return lead_deviation(o, res, idx) / ARCSEC
 
 
 def _coast_pair(depth):
-    from spiralbevel.gearset import facemilled as gfm
-    from spiralbevel.io.design_file import parse_design
-    from spiralbevel.job.blank import blank_from_design
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        spec = parse_design(DESIGN)
-        blank = blank_from_design(spec)
-        basic = gfm._basic_setups(spec, blank)
-    s1, s2 = gfm.PAIR_SIDES["coast"]
-    gear, pin = basic[(Member.GEAR, s2)], basic[(Member.PINION, s1)]
-    b = float(blank.b2)
-    res = syn.synthesize_pinion(gear.cutter, gear.settings, blank, side=s1, eta=math.radians(-55.0),
-                                semi_major_axis=0.15 * b, te_magnitude=8.0 * ARCSEC,
-                                approach=gfm.DEFAULT_SYNTHESIS["approach_fraction"] * b, free=syn.FREE_MODIFIED_ROLL,
-                                depth=depth, pinion_cutter_hint=pin.cutter, pinion_settings_hint=pin.settings)
+    blank, gear, res = coast_candidate_16x87(depth)
     c1, c2 = phased_for_pair(res.pinion_flank, gear.flank)
     return c1, c2, BevelPairKinematics(blank.Sigma, blank.z1, blank.z2)
 

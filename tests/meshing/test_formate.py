@@ -3,26 +3,22 @@ reached by the settings solve, the flank's curvatures against numerical differen
 Formate flank as the cutter surface (the universal generator with the cradle locked)."""
 
 import math
-import warnings
 
 import numpy as np
 import pytest
 
 from spiralbevel.conventions import Member, Side
-from spiralbevel.design.blank import BlankInput, compute_blank
 from spiralbevel.errors import DesignError
 from spiralbevel.machine.default_cutter import design_pressure_angle
 from spiralbevel.meshing.formate import FormateFlank, solve_formate_settings
-from _hypoid_sample2 import SAMPLE2
+from _hypoid_sample2 import sample2_blank
 
 R = math.radians
 
 
 @pytest.fixture(scope="module")
 def formate():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+    blank = sample2_blank()
     return blank, {side: solve_formate_settings(blank, Member.GEAR, side) for side in Side}
 
 

@@ -11,15 +11,13 @@ arcsec short of the oracle).
 """
 
 import math
-import warnings
 
 import numpy as np
 import pytest
 
-from _contact_oracle import Oracle
+from _contact_oracle import Oracle, grid_box, lead_deviation
 
 from spiralbevel.conventions import Member, Side
-from spiralbevel.design.blank import BlankInput, compute_blank
 from spiralbevel.meshing.formate import solve_formate_settings
 from spiralbevel.meshing.formate_surface import FormateSurface
 from spiralbevel.meshing.generated_surface import GeneratedSurface
@@ -27,7 +25,7 @@ from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks
 from spiralbevel.meshing.synthesis.hypoid_local import synthesize_hypoid_pinion
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC
-from _hypoid_sample2 import SAMPLE2
+from _hypoid_sample2 import sample2_blank
 
 #: arcsec: the oracle's own accuracy on a contact it samples is ~1e-3 arcsec (zooming grids, Newton to 1e-11 mm)
 TOL_ARCSEC = 0.01
@@ -35,9 +33,7 @@ TOL_ARCSEC = 0.01
 
 @pytest.fixture(scope="module")
 def formate_pair():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+    blank = sample2_blank()
     side = Side.CONVEX                       # pinion convex against the Formate wheel's concave flank
     _, _, gear = solve_formate_settings(blank, Member.GEAR, side.mate)
     pc, ps, _, _ = hypoid_basic_flanks(blank)[(Member.PINION, side)]
@@ -47,14 +43,6 @@ def formate_pair():
     c2 = FormateSurface(gear, res.phi2_mean)
     tca = solve_tca(c1, c2, res.kinematics, n_positions=21, start=np.r_[c1.reference_params, c2.reference_params, 0])
     return c1, c2, res.kinematics, tca
-
-
-def _box_generated(surface):
-    g = surface.flank.grid(31, 15, curvature=False)
-    phi = surface.cutter_angle(g.theta, g.psi_c)
-    lo, hi = np.array([phi.min(), g.psi_c.min()]), np.array([phi.max(), g.psi_c.max()])
-    d = 0.02 * (hi - lo)
-    return np.stack([lo - d, hi + d], 1)
 
 
 def _box_formate(surface):
@@ -89,14 +77,8 @@ def _deviation(formate_pair, idx):
     c1, c2, kin, res = formate_pair
     # a coarse grid of 48 x 24 (not the default 24 x 12): at position 10 the pinion's fillet-junction edge leads the
     # surface contact of the same pair by 1.0 arcsec, and the default grid zooms in on the surface contact only
-    o = Oracle(c1, c2, _box_generated(c1), _box_formate(c2), kin.z1, kin.z2, kin.axes(), n=(48, 24))
-    P = np.asarray(res.pairs)
-    phi = res.phi1[idx][:, None] + 2 * np.pi * P / kin.z1
-    p2e, _ = o.first_touch(phi.ravel(), res.drive_sign, (-kin.z1 / kin.z2 * phi.ravel(), c1.reference_params,
-                                                         c2.reference_params))
-    p2 = p2e.reshape(phi.shape) + 2 * np.pi * P / kin.z2
-    lead = np.max(np.where(np.isfinite(p2), -res.drive_sign * p2, -np.inf), axis=1)
-    return (-res.drive_sign * res.phi2[idx] - lead) / ARCSEC, o
+    o = Oracle(c1, c2, grid_box(c1), _box_formate(c2), kin.z1, kin.z2, kin.axes(), n=(48, 24))
+    return lead_deviation(o, res, idx) / ARCSEC, o
 
 
 def test_formate_pair_tca_matches_brute_force_up_to_the_corner(formate_pair):

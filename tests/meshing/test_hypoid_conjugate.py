@@ -3,13 +3,11 @@
 conjugate at the mean contact, E = 0 equals the intersecting-axes envelope solver and ease-off."""
 
 import math
-import warnings
 
 import numpy as np
 import pytest
 
 from spiralbevel.conventions import Member, Side
-from spiralbevel.design.blank import BlankInput, compute_blank
 from spiralbevel.machine import seed001_blank, seed001_settings
 from spiralbevel.meshing.easeoff import conjugate_pinion, easeoff
 from spiralbevel.meshing.generated_surface import phased_for_pair
@@ -17,8 +15,8 @@ from spiralbevel.meshing.hypoid_conjugate import conjugate_pinion_points, hypoid
 from spiralbevel.meshing.hypoid_kinematics import HypoidPairKinematics
 from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks
 from spiralbevel.meshing.synthesis import synthesize_pinion
-from spiralbevel.meshing.synthesis.hypoid_local import synthesize_hypoid_pinion, tca_surfaces
-from _hypoid_sample2 import SAMPLE2
+from spiralbevel.meshing.synthesis.hypoid_local import tca_surfaces
+from _hypoid_sample2 import sample2_blank, sample2_concave_pinion
 
 R = math.radians
 ARCSEC = math.pi / 648000.0
@@ -26,13 +24,9 @@ ARCSEC = math.pi / 648000.0
 
 @pytest.fixture(scope="module")
 def hypoid():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+    blank = sample2_blank()
     flanks = hypoid_basic_flanks(blank)
-    c, s, _, _ = flanks[(Member.PINION, Side.CONCAVE)]
-    syn = synthesize_hypoid_pinion(flanks[(Member.GEAR, Side.CONVEX)][2], c, s, blank, eta=R(6.0),
-                                   semi_major_axis=3.7, te_magnitude=6.0 * ARCSEC)
+    syn = sample2_concave_pinion(blank, flanks, R(6.0), 3.7, 6.0 * ARCSEC)
     return syn, tca_surfaces(syn)
 
 

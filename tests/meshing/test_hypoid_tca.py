@@ -4,21 +4,19 @@ leading contact's gear rotation agrees to <= 0.1 arcsec (the oracle's own accura
 side (surface contact) and on the coast side (where the bearing of the unsynthesized pair runs onto a flank edge)."""
 
 import math
-import warnings
 
 import numpy as np
 import pytest
 
-from _contact_oracle import Oracle
+from _contact_oracle import Oracle, grid_box, lead_deviation
 
 from spiralbevel.conventions import Member, Side
-from spiralbevel.design.blank import BlankInput, compute_blank
 from spiralbevel.meshing.hypoid_kinematics import HypoidPairKinematics
 from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks, phased_for_hypoid_pair
 from spiralbevel.meshing.misalignment import Misalignment
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC, ContactStatus
-from _hypoid_sample2 import SAMPLE2
+from _hypoid_sample2 import sample2_blank
 
 R = math.radians
 TOL_ARCSEC = 0.1
@@ -26,31 +24,14 @@ TOL_ARCSEC = 0.1
 
 @pytest.fixture(scope="module")
 def pair():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+    blank = sample2_blank()
     return blank, hypoid_basic_flanks(blank), HypoidPairKinematics.from_blank(blank)
-
-
-def _box(surface):
-    """Parameter box (2, 2) of the flank's own grid in the surface's (phi, psi_c) chart, widened by 2 %."""
-    g = surface.flank.grid(31, 15, curvature=False)
-    phi = surface.cutter_angle(g.theta, g.psi_c)
-    lo, hi = np.array([phi.min(), g.psi_c.min()]), np.array([phi.max(), g.psi_c.max()])
-    d = 0.02 * (hi - lo)
-    return np.stack([lo - d, hi + d], 1)
 
 
 def _deviation(c1, c2, kin, res, mis, idx):
     """|lead_TCA - lead_oracle| arcsec at positions idx (lead = -drive * phi2 of the leading contact)."""
-    o = Oracle(c1, c2, _box(c1), _box(c2), kin.z1, kin.z2, kin.axes(mis))
-    P = np.asarray(res.pairs)
-    phi = res.phi1[idx][:, None] + 2 * np.pi * P / kin.z1
-    p2e, _ = o.first_touch(phi.ravel(), res.drive_sign, (-kin.z1 / kin.z2 * phi.ravel(), c1.reference_params,
-                                                          c2.reference_params))
-    p2 = p2e.reshape(phi.shape) + 2 * np.pi * P / kin.z2
-    lead = np.max(np.where(np.isfinite(p2), -res.drive_sign * p2, -np.inf), axis=1)
-    return (-res.drive_sign * res.phi2[idx] - lead) / ARCSEC
+    o = Oracle(c1, c2, grid_box(c1), grid_box(c2), kin.z1, kin.z2, kin.axes(mis))
+    return lead_deviation(o, res, idx) / ARCSEC
 
 
 @pytest.mark.parametrize("pinion_side, mis", [(Side.CONCAVE, Misalignment()), (Side.CONVEX, Misalignment()),

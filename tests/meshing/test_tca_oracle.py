@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from _contact_oracle import Oracle
+from _contact_oracle import Oracle, grid_box, lead_deviation
 from _meshing_helpers import seed001_synthesized_pair
 
 from spiralbevel.conventions import Member, Side
@@ -28,17 +28,6 @@ TOL_ARCSEC = 0.1
 MISALIGNMENTS = {"aligned": Misalignment(), "pinion_axial": Misalignment(pinion_axial=0.05),
                  "gear_axial": Misalignment(gear_axial=0.05), "offset": Misalignment(offset=0.05),
                  "shaft_angle": Misalignment(shaft_angle=math.radians(0.03))}
-
-
-def _box(surface):
-    """Parameter box (2, 2) holding the real flank (from the flank's own grid), widened by 2 %."""
-    g = surface.flank.grid(31, 15, curvature=False)
-    # first parameter: the cutter angle phi of the (phi, psi_c) chart, or u of the (u, psi_c) chart (multi-point)
-    p0 = surface.cutter_angle(g.theta, g.psi_c) if hasattr(surface, "cutter_angle") else g.u
-    lo = np.array([p0.min(), g.psi_c.min()])
-    hi = np.array([p0.max(), g.psi_c.max()])
-    d = 0.02 * (hi - lo)
-    return np.stack([lo - d, hi + d], 1)
 
 
 def _synthesized():
@@ -67,14 +56,8 @@ def case(request):
 
 def _deviation(c1, c2, kin, res, mis, idx):
     """|lead_TCA - lead_oracle| arcsec at positions idx (lead = -drive * phi2 of the leading contact)."""
-    o = Oracle(c1, c2, _box(c1), _box(c2), kin.z1, kin.z2, mis.axes(kin.shaft_angle))
-    P = np.asarray(res.pairs)
-    phi = res.phi1[idx][:, None] + 2 * np.pi * P / kin.z1
-    p2e, _ = o.first_touch(phi.ravel(), res.drive_sign, (-kin.z1 / kin.z2 * phi.ravel(), c1.reference_params,
-                                                          c2.reference_params))
-    p2 = p2e.reshape(phi.shape) + 2 * np.pi * P / kin.z2
-    lead = np.max(np.where(np.isfinite(p2), -res.drive_sign * p2, -np.inf), axis=1)
-    return (-res.drive_sign * res.phi2[idx] - lead) / ARCSEC
+    o = Oracle(c1, c2, grid_box(c1), grid_box(c2), kin.z1, kin.z2, mis.axes(kin.shaft_angle))
+    return lead_deviation(o, res, idx) / ARCSEC
 
 
 @pytest.mark.parametrize("mis", list(MISALIGNMENTS))

@@ -3,31 +3,24 @@ contact flattening only (rigid teeth, no FE compliance): the unloaded limit is t
 the torque about the hypoid wheel axis at every position, and the loaded TE and the pressure grow with the torque."""
 
 import math
-import warnings
 
 import numpy as np
 import pytest
 
-from spiralbevel.conventions import Member, Side
-from spiralbevel.design.blank import BlankInput, compute_blank
 from spiralbevel.meshing.hypoid_pair import hypoid_basic_flanks
 from spiralbevel.meshing.ltca import ltca_model
-from spiralbevel.meshing.synthesis.hypoid_local import synthesize_hypoid_pinion, tca_surfaces
+from spiralbevel.meshing.synthesis.hypoid_local import tca_surfaces
 from spiralbevel.meshing.tca import solve_tca
-from _hypoid_sample2 import SAMPLE2
+from _hypoid_sample2 import sample2_blank, sample2_concave_pinion
 
 R = math.radians
 
 
 @pytest.fixture(scope="module")
 def model():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+    blank = sample2_blank()
     flanks = hypoid_basic_flanks(blank)
-    c, s, _, _ = flanks[(Member.PINION, Side.CONCAVE)]
-    syn = synthesize_hypoid_pinion(flanks[(Member.GEAR, Side.CONVEX)][2], c, s, blank, eta=R(40.0),
-                                   semi_major_axis=4.5, te_magnitude=8.0 * math.pi / 648000.0)
+    syn = sample2_concave_pinion(blank, flanks, R(40.0), 4.5, 8.0 * math.pi / 648000.0)
     c1, c2, start = tca_surfaces(syn)
     tca = solve_tca(c1, c2, syn.kinematics, n_positions=11, start=start)
     return syn, tca, ltca_model(c1, c2, syn.kinematics, tca, rigid=True, grid=(15, 5))

@@ -21,7 +21,7 @@ from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC, ContactStatus
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from _contact_oracle import Oracle  # noqa: E402
+from _contact_oracle import Oracle, first_touch_phi2, grid_box  # noqa: E402
 
 #: agreement of the followed edge contacts with the oracle: both solve the touch to 1e-10 mm; the oracle's zooming
 #: grids locate the first touch to about 1e-3 arcsec (as in tests/meshing/test_hypoid_tca.py)
@@ -42,24 +42,13 @@ def case():
     return pair, tca
 
 
-def _box(surface):
-    g = surface.flank.grid(31, 15, curvature=False)
-    phi = surface.cutter_angle(g.theta, g.psi_c)
-    lo, hi = np.array([phi.min(), g.psi_c.min()]), np.array([phi.max(), g.psi_c.max()])
-    d = 0.02 * (hi - lo)
-    return np.stack([lo - d, hi + d], 1)
-
-
 def _oracle_te(pair, tca, idx):
     """TE (arcsec) of the first touch of the real flanks of every pair at the positions ``idx``, by the oracle:
     relative to the TCA's pair 0 (a surface contact over the whole cycle), whose TE the oracle reproduces."""
     c1, c2, kin = pair.pinion, pair.gear, pair.kinematics
-    o = Oracle(c1, c2, _box(c1), _box(c2), kin.z1, kin.z2, kin.axes(None))
+    o = Oracle(c1, c2, grid_box(c1), grid_box(c2), kin.z1, kin.z2, kin.axes(None))
     P = np.asarray(tca.pairs)
-    phi = tca.phi1[idx][:, None] + 2 * np.pi * P / kin.z1
-    p2e, _ = o.first_touch(phi.ravel(), tca.drive_sign, (-kin.z1 / kin.z2 * phi.ravel(), c1.reference_params,
-                                                         c2.reference_params))
-    p2 = p2e.reshape(phi.shape) + 2 * np.pi * P / kin.z2
+    p2 = first_touch_phi2(o, tca, idx)
     j0 = int(np.flatnonzero(P == 0)[0])
     # te = drive (-(phi2 - phi20) - ...): at one position the TE differences are -drive x the phi2 differences
     return tca.te_pairs[idx, j0][:, None] / ARCSEC - tca.drive_sign * (p2 - p2[:, j0:j0 + 1]) / ARCSEC

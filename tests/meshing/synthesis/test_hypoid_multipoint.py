@@ -31,7 +31,7 @@ from spiralbevel.meshing.tca_result import ARCSEC
 
 sys.path.insert(0, str(Path(__file__).parents[1]))
 sys.path.insert(0, str(Path(__file__).parents[2]))
-from _contact_oracle import Oracle  # noqa: E402
+from _contact_oracle import Oracle, grid_box, lead_deviation  # noqa: E402
 from _hypoid_sample2 import SAMPLE2  # noqa: E402
 
 R = math.radians
@@ -93,21 +93,9 @@ def test_controlled_tca_matches_brute_force(controlled):
     pin, gear, _ = multipoint_surfaces(r)
     kin = r.synthesis.mean.kinematics
 
-    def box(surface):       # the (phi, psi_c) box of the flank's own grid (cutter angle, cradle angle), widened
-        g = surface.flank.grid(31, 15, curvature=False)
-        phi = surface.cutter_angle(g.theta, g.psi_c)
-        lo, hi = np.array([phi.min(), g.psi_c.min()]), np.array([phi.max(), g.psi_c.max()])
-        return np.stack([lo - 0.02 * (hi - lo), hi + 0.02 * (hi - lo)], 1)
-
-    o = Oracle(pin, gear, box(pin), box(gear), kin.z1, kin.z2, kin.axes())
+    o = Oracle(pin, gear, grid_box(pin), grid_box(gear), kin.z1, kin.z2, kin.axes())
     idx = np.array([0, 3, N_POS // 2, N_POS - 8])      # 0: the end of the cycle
-    P = np.asarray(res.pairs)
-    phi = res.phi1[idx][:, None] + 2 * np.pi * P / kin.z1
-    p2e, _ = o.first_touch(phi.ravel(), res.drive_sign, (-kin.z1 / kin.z2 * phi.ravel(), pin.reference_params,
-                                                          gear.reference_params))
-    p2 = p2e.reshape(phi.shape) + 2 * np.pi * P / kin.z2
-    lead = np.max(np.where(np.isfinite(p2), -res.drive_sign * p2, -np.inf), axis=1)
-    d = (-res.drive_sign * res.phi2[idx] - lead) / ARCSEC
+    d = lead_deviation(o, res, idx) / ARCSEC
     # the oracle's own accuracy is ~1e-5 arcsec (tests/meshing/test_hypoid_tca.py); 0.1 arcsec as there
     assert np.all(np.isfinite(d)) and np.max(np.abs(d)) <= 0.1, np.round(d, 5)
 

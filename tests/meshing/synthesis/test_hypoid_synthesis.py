@@ -22,8 +22,8 @@ from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC, ContactStatus
 
 sys.path.insert(0, str(Path(__file__).parents[1]))
-from _contact_oracle import Oracle  # noqa: E402
-from _hypoid_sample2 import SAMPLE2
+from _contact_oracle import Oracle, grid_box, lead_deviation  # noqa: E402
+from _hypoid_sample2 import SAMPLE2, sample2_blank
 
 R = math.radians
 ETA, A, TE = R(6.0), 3.7, 6.0 * ARCSEC          # design path direction, semi-major axis (mm), TE magnitude (rad)
@@ -31,9 +31,7 @@ ETA, A, TE = R(6.0), 3.7, 6.0 * ARCSEC          # design path direction, semi-ma
 
 @pytest.fixture(scope="module")
 def synthesized():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # Sample 2's own face width warning
-        blank = compute_blank(BlankInput(**SAMPLE2))
+    blank = sample2_blank()
     flanks = hypoid_basic_flanks(blank)
     out = {}
     for side in (Side.CONCAVE, Side.CONVEX):
@@ -100,21 +98,9 @@ def test_synthesized_tca_matches_brute_force(synthesized):
     _, syn, c1, c2, res = synthesized[Side.CONCAVE]
     kin = syn.kinematics
 
-    def box(surface):       # the (phi, psi_c) box of the flank's own grid (cutter angle, cradle angle), widened
-        g = surface.flank.grid(31, 15, curvature=False)
-        phi = surface.cutter_angle(g.theta, g.psi_c)
-        lo, hi = np.array([phi.min(), g.psi_c.min()]), np.array([phi.max(), g.psi_c.max()])
-        return np.stack([lo - 0.02 * (hi - lo), hi + 0.02 * (hi - lo)], 1)
-
-    o = Oracle(c1, c2, box(c1), box(c2), kin.z1, kin.z2, kin.axes())
+    o = Oracle(c1, c2, grid_box(c1), grid_box(c2), kin.z1, kin.z2, kin.axes())
     idx = np.arange(0, len(res.phi1), 8)
-    P = np.asarray(res.pairs)
-    phi = res.phi1[idx][:, None] + 2 * np.pi * P / kin.z1
-    p2e, _ = o.first_touch(phi.ravel(), res.drive_sign, (-kin.z1 / kin.z2 * phi.ravel(), c1.reference_params,
-                                                          c2.reference_params))
-    p2 = p2e.reshape(phi.shape) + 2 * np.pi * P / kin.z2
-    lead = np.max(np.where(np.isfinite(p2), -res.drive_sign * p2, -np.inf), axis=1)
-    d = (-res.drive_sign * res.phi2[idx] - lead) / ARCSEC
+    d = lead_deviation(o, res, idx) / ARCSEC
     assert np.all(np.isfinite(d)) and np.max(np.abs(d)) <= 0.1, np.round(d, 5)
 
 
