@@ -12,7 +12,7 @@ import warnings
 import numpy as np
 
 from ..conventions import Member, Side
-from ..errors import ConvergenceError, DesignWarning, GeometryError
+from ..errors import ConvergenceError, DesignError, DesignWarning, GeometryError
 from ..meshing.tca_result import ARCSEC
 from .flank_checks import CHECK_ANGLE_DEG
 from .flank_setup import SIDES, FlankSetup
@@ -81,12 +81,15 @@ _ALL_DIRECTIONS = DEFAULT_PATH_DIRECTIONS + DEFAULT_LENGTHWISE_DIRECTIONS
 _CHECK_POSITIONS = 41   # as the job's TCA (run_pair_tca)
 
 
-def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK_POSITIONS) -> int:
+def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK_POSITIONS,
+                      between: bool = True) -> int:
     """Number of TCA positions over one mesh cycle at which the pair's contact is not inside both flanks.
 
     Counts positions with no real-flank contact and positions in edge contact (the contact point beyond a flank
     boundary: tooth top, fillet, toe or heel), from the TCA's physical-contact status; ``n_positions`` when the TCA
-    itself fails or the pinion flank does not cover the whole face.
+    itself fails or the pinion flank does not cover the whole face. With ``between``, when no position is off, an
+    edge contact that leads between the positions (at a tooth-pair transfer, :mod:`~spiralbevel.gearset.transfer_check`)
+    counts its finer positions in steps of the TCA (at least 1).
     """
     from ..errors import NoContactError
     from ..meshing.pair import meshing_pair
@@ -101,7 +104,12 @@ def bearing_off_flank(blank, pinion_flank, gear_flank, n_positions: int = _CHECK
         res = solve_tca(pair.pinion, pair.gear, pair.kinematics, n_positions=n_positions, start=pair.start)
     except (NoContactError, ConvergenceError):
         return n_positions
-    return int(np.sum(~np.isfinite(res.te) | res.edge_contact))
+    off = int(np.sum(~np.isfinite(res.te) | res.edge_contact))
+    if off == 0 and between:   # a short edge contact between the positions, at a tooth-pair transfer
+        from .transfer_check import FACTOR, short_edge_positions
+
+        off = -(-short_edge_positions(pair, res) // FACTOR)    # finer positions in steps (>= 1 if any)
+    return off
 
 
 def _angle_deviation(blank, flank) -> float:
@@ -300,6 +308,17 @@ def _require_near_branch(res, pin):
                                iterations=res.iterations, residual=res.residual, last=None)
 
 
+def _root_on_cone(flank) -> bool:
+    """True when the flank's generated root lies nowhere more than ``CHECK_ROOT_MM`` below the root cone (the design
+    check ``gearset.root_cone``, 11 face stations)."""
+    from .root_cone import root_cone
+
+    try:
+        return not root_cone(flank).below
+    except (GeometryError, DesignError):
+        return False
+
+
 #: rank (positions off the flanks) of a default candidate that keeps the bearing inside but closes the tooth space
 #: (gearset/slot_open.py): after every candidate that keeps the bearing inside with the slot open, before any with a
 #: position off the flanks, so that when no candidate opens the slot the one taken without the rule is taken
@@ -374,7 +393,8 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
         if refit and 0 < off < _CHECK_POSITIONS:   # an edge contact: the root back on the root cone, a smaller
             res2 = fit_pinion_edge_radius(blank, lower_root(blank, res))    # fillet; kept if it helps
             off2 = off if res2 is res else bearing_off_flank(blank, res2.pinion_flank, gear.flank)
-            if off2 < off:
+            # (the root put on the root cone at toe, mean and heel can dip below it between them: not kept then)
+            if off2 < off and _root_on_cone(res2.pinion_flank):
                 res, off = res2, off2
         # M off the pitch point moves the pinion's mean-point angles off the design (by a few 0.01 deg): such a
         # candidate is taken only when it keeps the bearing inside the flanks and the angles within the check
