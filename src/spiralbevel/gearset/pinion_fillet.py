@@ -12,7 +12,11 @@ The blade surface does not depend on the edge radius (the blade is defined by it
 mean-point fit: the largest edge radius at which the junction line lies at or below the gear's top at every face
 station, times ``EDGE_RADIUS_FILL`` (the derived cutters' margin), the same search as the hypoid slot fit
 (:func:`~spiralbevel.gearset.hypoid_fillet.largest_fitting_radius`). Only a derived edge radius is refitted, and
-only made smaller.
+only made smaller. That bound (the gear's face cone in the plane of the axes) is conservative; where no edge radius
+meets it, the largest edge radius that the pair's TCA accepts as well as a sharp blade's is taken instead
+(:func:`_fit_edge_radius_by_tca`). Where a sharp blade itself leaves the gear's tip on the fillet (a synthesized blade
+much steeper than the flank: its trochoidal fillet starts high), no edge radius helps and the design check
+``fillet_top`` names the blank key to change.
 
 The gear's top in the pinion's axial section: both members share the pitch generatrix, so at the cone distance R the
 gear's face cone lies c(R) = h_f1(R) - h_a2(R) above the pinion's root cone, with h_f1(R) = h_fm1 + (R - R_m)
@@ -286,10 +290,9 @@ TCA_RADIUS_POSITIONS = 161
 def _fit_edge_radius_by_tca(blank, res, flank):
     """``res`` with the largest edge radius (times ``EDGE_RADIUS_FILL``) at which the pair's TCA over one mesh cycle
     (``facemilled.bearing_off_flank`` at ``TCA_RADIUS_POSITIONS``) has no more positions off the flanks than with a
-    sharp-cornered
-    blade (edge radius rho0/1000), by bisection to ``TCA_RADIUS_TOL`` rho0; ``res`` itself when that is no fewer than
-    with the derived edge radius rho0 (the fillet's height then does not come from the edge radius), the result has no
-    gear flank, or a flank cannot be generated.
+    sharp-cornered blade (edge radius rho0/1000), by bisection to ``TCA_RADIUS_TOL`` rho0; ``res`` itself when that is
+    no fewer than with the derived edge radius rho0 (the fillet's height then does not come from the edge radius), the
+    result has no gear flank, or a flank cannot be generated.
 
     The fallback of :func:`fit_pinion_edge_radius` where no edge radius keeps the junction below the gear's face cone
     in the plane of the axes (that bound is conservative: the gear's tip passes it in the middle of the tooth space,
