@@ -280,10 +280,10 @@ def fit_pinion_edge_radius(blank, res, n_face: int = JUNCTION_STATIONS):
 
 #: relative resolution (of the derived edge radius) of the TCA-judged edge-radius search
 TCA_RADIUS_TOL = 0.01
-#: TCA positions over one mesh cycle of that search: four times the default candidates' check (41), fine enough for a
-#: short contact with the fillet between the check's positions (40/76 of ``bench_robustness.py 100 2``: 0.11 deg of
-#: pinion roll at 0.247 mm, which the 41 positions 0.225 deg apart step over and the job's short-contact detector
-#: finds)
+#: TCA positions over one mesh cycle of that search: four times the default candidates' check (41), for short
+#: contacts with the fillet between the check's positions (40/76 of ``bench_robustness.py 100 2``: 0.11 deg of pinion
+#: roll, which 41 positions 0.225 deg apart step over); the job's short-contact detector has the last word
+#: (:func:`_short_edge_contact`)
 TCA_RADIUS_POSITIONS = 161
 
 
@@ -300,6 +300,10 @@ def _fit_edge_radius_by_tca(blank, res, flank):
     blade still generates its junction 0.12 mm above the gear's face cone, 0.02 mm above the estimate of the gear's
     tip contact, and the TCA shows the pinion's fillet at 2 of 41 positions with the derived 0.351 mm, at none from
     0.25 mm down. The blade, the settings and the mean-point fit stay as they are (module docstring).
+
+    A radius whose pair shows an edge contact between the positions of the job's TCA (:func:`_short_edge_contact`) is
+    not taken (``res`` itself): the default search then goes on to its next candidate, which may keep the bearing
+    inside without it (14/48 and 16/31 of ``bench_robustness.py 100 2``).
 
     ``flank`` : callable edge radius (mm) -> ToothFlank with ``res``'s blade and settings.
     """
@@ -331,7 +335,32 @@ def _fit_edge_radius_by_tca(blank, res, flank):
         if off(rho) > target:
             rho = lo
         new = flank(rho)
+        if _short_edge_contact(blank, new, gear):
+            return res
     except (GeometryError, ConvergenceError):
         return res
     return dataclasses.replace(res, pinion_cutter=dataclasses.replace(res.pinion_cutter, edge_radius=rho),
                                pinion_flank=new)
+
+
+#: TCA positions of the job's TCA (``job.tca.run_pair_tca``), between which ``gearset.tca.short_events`` looks
+JOB_TCA_POSITIONS = 21
+
+
+def _short_edge_contact(blank, pinion_flank, gear_flank) -> bool:
+    """Whether the pair's TCA at the job's ``JOB_TCA_POSITIONS`` shows an edge contact, at a position or leading
+    between two (``gearset.tca.short_events``): what the job's report and the robustness bench count as an edge
+    contact. True also where that TCA cannot be solved."""
+    from ..errors import ConvergenceError, NoContactError
+    from ..meshing.pair import meshing_pair
+    from ..meshing.tca import solve_tca
+    from .tca import short_events
+
+    pair = meshing_pair(pinion_flank, gear_flank, blank)
+    try:
+        res = solve_tca(pair.pinion, pair.gear, pair.kinematics, n_positions=JOB_TCA_POSITIONS, start=pair.start)
+    except (NoContactError, ConvergenceError):
+        return True
+    if np.any(res.edge_contact):
+        return True
+    return any(e["kind"] == "edge" for e in short_events(pair, res))
