@@ -412,9 +412,9 @@ def test_opposite_blade_off_the_pitch_cone_is_checked_against_sweep_and_exact_so
     cutter at the derived point width (0.49 mm into the concave flank at the toe: 0.02 mm, the first-order measure
     and the sweep's point spacing, as on the 12/41 design; measured 0.003 mm apart) and with the exact per-point
     solve on the opposite flank (2e-3 mm, the interpolation); the refit then makes every cutter of the pair fit."""
+    _without_tca_edge_radius(monkeypatch)
     from spiralbevel.errors import GeometryError
 
-    _without_tca_edge_radius(monkeypatch)
     spec = parse_design(DESIGN_16X23)
     blank = blank_from_design(spec)
     st, _ = fm.setup_flanks(spec, blank, with_synthesis=True)
