@@ -18,7 +18,8 @@ from scipy.optimize import minimize_scalar
 
 import spiralbevel as sb
 from spiralbevel.conventions import Member, Side
-from spiralbevel.gearset.fillet_top import CAUSE, fillet_top_checks, fillet_top_messages, mate_top_height
+from spiralbevel.gearset.fillet_top import (CAUSE, FILLET_TOP_TOL_MM, fillet_top_checks, fillet_top_messages,
+                                            mate_top_height)
 from spiralbevel.io.design_file import parse_design
 from spiralbevel.job.blank import blank_from_design
 
@@ -224,9 +225,13 @@ def test_fires_where_the_tca_shows_the_fillet_edge_contact(small):
     assert not checks[(Member.PINION, Side.CONCAVE)].fires and (Member.PINION, Side.CONCAVE) not in msgs
     (text,) = msgs[(Member.PINION, Side.CONVEX)]
     assert text.startswith(CAUSE)
-    for key in ("gear_set.depth.clearance_factor", "gear_set.depth.mean_addendum_factor", "face_milling.edge_radius",
+    for key in ("gear_set.depth.clearance_factor", "gear_set.depth.mean_addendum_factor",
                 "gear_set.normal_pressure_angle"):
         assert key in text
+    # the edge radius is named only where a sharp blade would bring the junction below the gear's tip contact
+    sharp = checks[(Member.PINION, Side.CONVEX)].sharp_excess
+    assert ("face_milling.edge_radius" in text) == (sharp <= FILLET_TOP_TOL_MM)
+    assert ("no edge radius removes it" in text) == (sharp > FILLET_TOP_TOL_MM)
     # the plane-of-axes reach is the conservative bound: it flags every flank the start-of-active-flank one does
     for res in checks.values():
         assert res.reach_excess >= res.excess

@@ -18,6 +18,7 @@ from spiralbevel.generation.basic_settings_solve import root_deviation
 from spiralbevel.generation.flank import generate_flank
 from spiralbevel.gearset.pinion_fillet import (fit_pinion_edge_radius, gear_top_height, junction_height, lower_root,
                                              raise_root)
+from spiralbevel.gearset.root_cone import root_heights
 from spiralbevel.io.design_file import parse_design
 from spiralbevel.job import facemilled as fm
 from spiralbevel.job.blank import blank_from_design
@@ -85,7 +86,10 @@ def test_lower_root_puts_the_root_on_the_cone_with_the_same_blade(case):
     assert np.all(dev > 0.29)                               # the case: the root 0.3 mm above the cone
     new = lower_root(blank, Result(st.cutter, lifted, flank))
     delta = new.pinion_settings.sliding_base - lifted.sliding_base
-    assert delta == pytest.approx(dev.min(), abs=1e-15)
+    # moved by the root-cone check's own measure (11 stations, root_heights: one measure for the check and the
+    # placement), which agrees with the second measure root_deviation to its 2e-4 rho sampling offset
+    assert delta == pytest.approx(root_heights(flank)[1].min(), abs=1e-15)
+    assert delta == pytest.approx(dev.min(), abs=1e-3)
     # on the root cone where it was lowest, nowhere below it (root_deviation samples 2e-4 rho above the tip; the
     # lift varies along the face by the 1e-5 mm of the basic root)
     after = np.array(root_deviation(new.pinion_flank), float)
@@ -114,7 +118,8 @@ def test_raise_root_puts_a_deep_root_on_the_cone_with_the_same_blade(case):
     assert raise_root(blank, Result(st.cutter, st.settings, st.flank)).pinion_flank is st.flank   # on it: kept
     new = raise_root(blank, Result(st.cutter, deep, flank))
     delta = new.pinion_settings.sliding_base - deep.sliding_base
-    assert delta == pytest.approx(dev.max(), abs=1e-15)
+    assert delta == pytest.approx(root_heights(flank)[1].max(), abs=1e-15)   # the check's measure, as above
+    assert delta == pytest.approx(dev.max(), abs=1e-3)
     # on the root cone where it was highest, nowhere above it (tolerance as for lower_root above)
     after = np.array(root_deviation(new.pinion_flank), float)
     assert after.max() == pytest.approx(0.0, abs=1e-3) and np.all(after < 1e-3)

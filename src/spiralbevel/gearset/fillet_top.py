@@ -50,6 +50,18 @@ higher for the gear), which moves the mate's tip contact up its flank and makes 
 larger pressure angle (``gear_set.normal_pressure_angle`` / ``coast_pressure_angle``); a smaller edge radius
 (``face_milling.edge_radius`` or the flank's ``face_milling.<member>_<side>.cutter.edge_radius``), which can lower
 the junction by at most rho (1 - sin alpha).
+
+**Where no edge radius helps.** Where the check fires, the flank is generated once more with a sharp blade (edge
+radius 1/1000 of the cutter's; blade and settings the same): where that junction still lies above the mate's tip
+contact, the warning says no edge radius removes it, leaves the edge radius out and leads with the clearance factor
+and its value. A blade angle well above the flank's mean-point pressure angle (more than ``STEEP_BLADE_DEG``), as the
+local synthesis gives where it converges only with the blade angle free, is named as the cause: such a blade
+generates the flank like a rack of the blade angle rolling on the pitch radius r_b / cos(alpha_blade) of the virtual
+spur gear (r_b = r cos(alpha_n)), above the mean point; the rack's tip line then meets the line of action far from
+the base circle, and the form circle lies high, as with a negative profile shift. On 24/112 of
+``bench_robustness.py 100 2`` (coast pinion: a 31.63 deg blade for a 20 deg flank) the rack gives a form height of
+3.99 mm at the mean cone distance against the generated sharp junction's 4.06 mm, a 20 deg rack 1.45 mm, the gear's
+tip contact 2.93 mm (``tests/gearset/test_fillet_cure.py``).
 """
 
 from __future__ import annotations
@@ -76,6 +88,10 @@ FILLET_STATIONS = 7
 FILLET_TOP_TOL_MM = 0.01
 #: the failure cause as the warning names it (the robustness bench counts designs by it)
 CAUSE = "fillet above the mate's tip: the mate's tip meets the fillet"
+#: a cutter blade angle this much (deg) above the flank's mean-point pressure angle is named in the warning as what
+#: lifts the trochoidal fillet (the synthesized coast pinion of 24/112 of ``bench_robustness.py 100 2``: 31.63 deg
+#: blade for a 20 deg flank)
+STEEP_BLADE_DEG = 2.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -94,6 +110,11 @@ class FilletTop:
         Cone distances of the stations.
     edge_radius, blade_angle : float, mm and rad
         The flank's cutter.
+    sharp_excess : float or None, mm
+        Where the check fires: the excess with the same blade and settings and a sharp blade (edge radius 1/1000 of
+        the cutter's): above ``FILLET_TOP_TOL_MM``, no edge radius removes the fillet contact.
+    pressure_angle : float or None, rad
+        The flank's normal pressure angle at the mean point (magnitude).
     """
 
     junction: np.ndarray
@@ -102,6 +123,8 @@ class FilletTop:
     R: np.ndarray
     edge_radius: float
     blade_angle: float
+    sharp_excess: float | None = None
+    pressure_angle: float | None = None
 
     @property
     def excess(self) -> float:
@@ -209,12 +232,29 @@ def fillet_top(blank, setup, member: Member, n_face: int = FILLET_STATIONS) -> F
     mp = flank.mean_point()
     res = FilletTop(junction_height(flank, n_face), mate_top_height(blank, member, R),
                     active_start_height(blank, member, R, abs(mp.pressure_angle), abs(mp.spiral_angle)), R,
-                    float(setup.cutter.edge_radius), float(setup.cutter.blade_angle))
+                    float(setup.cutter.edge_radius), float(setup.cutter.blade_angle),
+                    pressure_angle=abs(float(mp.pressure_angle)))
+    if res.fires:
+        res = dataclasses.replace(res, sharp_excess=_sharp_excess(blank, setup, member, res))
     if not (np.all(np.isfinite(res.junction)) and np.all(np.isfinite(res.start)) and np.all(np.isfinite(res.top))):
         # a report never carries a NaN: the check says it could not be computed instead (fillet_top_checks)
         raise GeometryError(f"{member.value} {flank.side.value}: the fillet/blade junction or the mate's tip contact "
                             "could not be located at every face station")
     return res
+
+
+def _sharp_excess(blank, setup, member: Member, res: FilletTop) -> float | None:
+    """Excess (mm) of the junction over the mate's tip contact with ``setup``'s blade and settings and a sharp blade
+    (edge radius 1/1000 of the cutter's): the trochoidal part that no edge radius removes; ``None`` when that flank
+    cannot be generated."""
+    from ..generation.flank import generate_flank
+
+    cutter = dataclasses.replace(setup.cutter, edge_radius=1e-3 * float(setup.cutter.edge_radius))
+    try:
+        sharp = generate_flank(cutter, setup.settings, blank, member, setup.flank.side)
+        return float(np.max(junction_height(sharp, len(res.R)) - res.start))
+    except GeometryError:
+        return None
 
 
 def fillet_top_checks(blank, setups) -> dict:
@@ -235,7 +275,8 @@ def fillet_top_message(spec, blank, member: Member, side: Side, res: FilletTop) 
     i = int(np.argmax(res.junction - res.start))
     k_c = float(blank.k_c)
     c_ham = float(blank.c_ham)
-    need_kc = k_c + res.excess / float(blank.hmw)
+    # the clearance that puts the mate's tip contact above the junction, rounded up to the design file's 0.001
+    need_kc = math.ceil(1e3 * (k_c + res.excess / float(blank.hmw))) / 1e3
     if member is Member.PINION:
         shift = (f"lower gear_set.depth.mean_addendum_factor from {c_ham:.3f} (a larger pinion addendum, profile "
                  f"shift x_hm1 up from {float(blank.x_hm1):.3f}: a shallower pinion dedendum and trochoidal fillet)")
@@ -246,12 +287,25 @@ def fillet_top_message(spec, blank, member: Member, side: Side, res: FilletTop) 
            f"radius lifts the junction by at most rho (1 - sin alpha) = {res.edge_part:.3f} mm"
            + (", not enough alone)" if res.edge_part < res.excess else ")"))
     pa = "gear_set.normal_pressure_angle / gear_set.coast_pressure_angle"
-    return (f"{CAUSE}: the TCA's edge contact comes from the fillet/blade junction, which lies up to "
+    head = (f"{CAUSE}: the TCA's edge contact comes from the fillet/blade junction, which lies up to "
             f"{res.excess:.3f} mm above the point where the {mate}'s tip contacts this flank "
             f"({res.face_position:.2f} of the face width from the toe: junction {res.junction[i]:.3f} mm, the "
             f"{mate}'s tip contact {res.start[i]:.3f} mm and its face cone {res.top[i]:.3f} mm above the "
-            f"{member.value}'s root cone), whatever the synthesis does; change the blank or the cutter: raise "
-            f"gear_set.depth.clearance_factor from {k_c:.3f} to at least {need_kc:.3f}, or {shift}, or a larger "
+            f"{member.value}'s root cone)")
+    kc = f"raise gear_set.depth.clearance_factor from {k_c:.3f} to {need_kc:.3f}"
+    if res.sharp_excess is not None and res.sharp_excess > FILLET_TOP_TOL_MM:
+        # the trochoidal part alone reaches above the mate's tip: only the blank helps (module docstring)
+        steep = ""
+        if res.pressure_angle is not None and res.blade_angle > res.pressure_angle + math.radians(STEEP_BLADE_DEG):
+            steep = (f" (the cutter's blade angle is {math.degrees(res.blade_angle):.2f} deg against the flank's "
+                     f"{math.degrees(res.pressure_angle):.2f} deg pressure angle at the mean point: such a blade "
+                     "generates the flank as a rack rolling on a pitch line above the mean point, whose tip starts the "
+                     "flank high, as a negative profile shift does)")
+        return (f"{head}; no edge radius removes it: with a sharp blade the junction still lies "
+                f"{res.sharp_excess:.3f} mm above the {mate}'s tip contact{steep}; change the blank: {kc} (the "
+                f"{member.value}'s dedendum deepened by the excess; the synthesis then matches the pinion anew), or "
+                f"{shift}, or a larger pressure angle ({pa})")
+    return (f"{head}, whatever the synthesis does; change the blank or the cutter: {kc}, or {shift}, or a larger "
             f"pressure angle ({pa}), or {rho}")
 
 

@@ -12,7 +12,11 @@ The blade surface does not depend on the edge radius (the blade is defined by it
 mean-point fit: the largest edge radius at which the junction line lies at or below the gear's top at every face
 station, times ``EDGE_RADIUS_FILL`` (the derived cutters' margin), the same search as the hypoid slot fit
 (:func:`~spiralbevel.gearset.hypoid_fillet.largest_fitting_radius`). Only a derived edge radius is refitted, and
-only made smaller.
+only made smaller. That bound (the gear's face cone in the plane of the axes) is conservative; where no edge radius
+meets it, the largest edge radius that the pair's TCA accepts as well as a sharp blade's is taken instead
+(:func:`_fit_edge_radius_by_tca`). Where a sharp blade itself leaves the gear's tip on the fillet (a synthesized blade
+much steeper than the flank: its trochoidal fillet starts high), no edge radius helps and the design check
+``fillet_top`` names the blank key to change.
 
 The gear's top in the pinion's axial section: both members share the pitch generatrix, so at the cone distance R the
 gear's face cone lies c(R) = h_f1(R) - h_a2(R) above the pinion's root cone, with h_f1(R) = h_fm1 + (R - R_m)
@@ -98,9 +102,9 @@ def gear_top_height(blank, R) -> np.ndarray:
 
 def lower_root(blank, res):
     """The synthesis result ``res`` with its pinion root put on the blank's root cone at the face station where it
-    lies lowest (toe, mean or heel; nowhere below it), blade surface unchanged (module docstring); ``res`` itself
-    when the root lies within ``CHECK_ROOT_MM`` of the root cone there, below it, or the cutter cannot be extended
-    (the point width would vanish).
+    lies lowest (of the ``ROOT_STATIONS`` stations of the root-cone check, ``_root_heights``; nowhere below it),
+    blade surface unchanged (module docstring); ``res`` itself when the root lies within ``CHECK_ROOT_MM`` of the
+    root cone there, below it, or the cutter cannot be extended (the point width would vanish).
 
     Parameters
     ----------
@@ -111,9 +115,9 @@ def lower_root(blank, res):
     -------
     SynthesisResult
     """
-    from .facemilled import CHECK_ROOT_MM
+    from .root_cone import CHECK_ROOT_MM
 
-    dev = _root_deviation(res)
+    dev = _root_heights(res)
     if not dev or min(dev) <= CHECK_ROOT_MM:
         return res
     return _move_root(blank, res, min(dev))
@@ -121,12 +125,12 @@ def lower_root(blank, res):
 
 def raise_root(blank, res):
     """The synthesis result ``res`` with its pinion root put on the blank's root cone at the face station where it
-    lies highest (toe, mean or heel; nowhere above it), blade surface unchanged: the blade shortened (module
-    docstring); ``res`` itself when the root lies within ``CHECK_ROOT_MM`` of the root cone there, or above it (where
-    the tip generates no enveloping root point, the flank's tip line is measured: ``_root_deviation``). The
-    raise lifts the fillet/blade junction with the root: where that brings it above both the mate's tip contact (the
-    estimate of ``fillet_top``) and where it was, the edge radius is reduced to keep it there (the largest that does,
-    times ``EDGE_RADIUS_FILL``); the blade surface stays the same.
+    lies highest (of the ``ROOT_STATIONS`` stations of the root-cone check, ``_root_heights``; nowhere above it),
+    blade surface unchanged: the blade shortened (module docstring); ``res`` itself when the root lies within
+    ``CHECK_ROOT_MM`` of the root cone there, or above it. The raise lifts the fillet/blade junction with the root:
+    where that brings it above both the mate's tip contact (the estimate of ``fillet_top``) and where it was, the
+    edge radius is reduced to keep it there (the largest that does, times ``EDGE_RADIUS_FILL``); the blade surface
+    stays the same.
 
     Parameters
     ----------
@@ -137,9 +141,9 @@ def raise_root(blank, res):
     -------
     SynthesisResult
     """
-    from .facemilled import CHECK_ROOT_MM
+    from .root_cone import CHECK_ROOT_MM
 
-    dev = _root_deviation(res, deep=True)
+    dev = _root_heights(res)
     if not dev or max(dev) >= -CHECK_ROOT_MM:
         return res
     new = _move_root(blank, res, max(dev), keep_width=True)
@@ -184,33 +188,23 @@ def _keep_junction_below_mate_tip(blank, old, new, n_face: int = JUNCTION_STATIO
         return new
 
 
-def _root_deviation(res, deep: bool = False) -> list:
-    """Heights (mm) of the synthesized pinion's root above the root cone at toe, mean and heel where defined.
-
-    With ``deep`` (the root raise), where the tip generates no enveloping root point at some of these stations (the
-    root there is the trace of the tip circle: ``root_deviation`` gives ``None``), the heights of the flank's tip line
-    (the first fillet row of ``ToothFlank.grid``, solved row by row from the junction) at ``JUNCTION_STATIONS`` face
-    stations instead: the depth of the cut wherever the tip reaches (on 16/87, 26/61 and 30/69 of
-    ``bench_robustness.py 100 2`` the drive cut 1.03, 0.85 and 3.31 mm below the root cone with no enveloping root
-    point at toe, mean or heel)."""
+def _root_heights(res) -> list:
+    """Heights (mm) of the synthesized pinion's root above the root cone at the ``ROOT_STATIONS`` face stations of the
+    design check "root below the root cone" (:func:`~spiralbevel.gearset.root_cone.root_heights`: the cutter's tip
+    line located on the equation of meshing, then Newton's method at each station; checked against a brute-force
+    sweep of the tip circle in ``tests/gearset/test_root_cone.py``), the stations it reaches; empty when it reaches
+    none. One measure for the placement and the check: a root placed on the root cone passes the check by
+    construction. The tip line is regular also where the tip generates no enveloping root point (the root there is
+    the trace of the tip circle; on 16/87, 26/61 and 30/69 of ``bench_robustness.py 100 2`` the drive cut 1.03,
+    0.85 and 3.31 mm below the root cone with no enveloping root point at toe, mean or heel)."""
     from ..errors import GeometryError
-    from ..generation.basic_settings_solve import root_deviation
+    from .root_cone import root_heights
 
     try:
-        dev = root_deviation(res.pinion_flank)
+        _, h = root_heights(res.pinion_flank)
     except GeometryError:
-        dev = (None,)
-    if not deep or all(d is not None for d in dev):
-        return [d for d in dev if d is not None]
-    fl = res.pinion_flank
-    ol = fl.outline
-    try:
-        tip = fl.grid(JUNCTION_STATIONS, 2, n_fillet=2, curvature=False).points[:, 0]
-    except GeometryError:
-        return [d for d in dev if d is not None]
-    R, h = ol.Rh(tip[:, 2], np.hypot(tip[:, 0], tip[:, 1]))
-    out = h - ol.h_root(R)
-    return [float(x) for x in out if np.isfinite(x)]
+        return []
+    return [float(x) for x in h if np.isfinite(x)]
 
 
 def _move_root(blank, res, delta: float, keep_width: bool = False):
@@ -241,8 +235,10 @@ def _move_root(blank, res, delta: float, keep_width: bool = False):
 
 def fit_pinion_edge_radius(blank, res, n_face: int = JUNCTION_STATIONS):
     """The synthesis result ``res`` with its pinion cutter's edge radius refitted (module docstring), or ``res``
-    itself when its fillet already stays below the gear's top or no edge radius fits (then the TCA shows the fillet
-    contact).
+    itself when its fillet already stays below the gear's top. Where no edge radius keeps the junction below the
+    gear's face cone, the largest that keeps the pair's TCA off the fillet as far as a sharp blade does
+    (:func:`_fit_edge_radius_by_tca`), or ``res`` itself when no edge radius helps (then the TCA shows the fillet
+    contact and the design check ``fillet_top`` names the blank key to change).
 
     Parameters
     ----------
@@ -276,7 +272,95 @@ def fit_pinion_edge_radius(blank, res, n_face: int = JUNCTION_STATIONS):
     except GeometryError:
         return res
     if rho is None:
-        return res
+        return _fit_edge_radius_by_tca(blank, res, flank)
     rho *= EDGE_RADIUS_FILL
     new = dataclasses.replace(cutter, edge_radius=rho)
     return dataclasses.replace(res, pinion_cutter=new, pinion_flank=flank(rho))
+
+
+#: relative resolution (of the derived edge radius) of the TCA-judged edge-radius search
+TCA_RADIUS_TOL = 0.01
+#: TCA positions over one mesh cycle of that search: four times the default candidates' check (41), for short
+#: contacts with the fillet between the check's positions (40/76 of ``bench_robustness.py 100 2``: 0.11 deg of pinion
+#: roll, which 41 positions 0.225 deg apart step over); the job's short-contact detector has the last word
+#: (:func:`_short_edge_contact`)
+TCA_RADIUS_POSITIONS = 161
+
+
+def _fit_edge_radius_by_tca(blank, res, flank):
+    """``res`` with the largest edge radius (times ``EDGE_RADIUS_FILL``) at which the pair's TCA over one mesh cycle
+    (``facemilled.bearing_off_flank`` at ``TCA_RADIUS_POSITIONS``) has no more positions off the flanks than with a
+    sharp-cornered blade (edge radius rho0/1000), by bisection to ``TCA_RADIUS_TOL`` rho0; ``res`` itself when that is
+    no fewer than with the derived edge radius rho0 (the fillet's height then does not come from the edge radius), the
+    result has no gear flank, or a flank cannot be generated.
+
+    The fallback of :func:`fit_pinion_edge_radius` where no edge radius keeps the junction below the gear's face cone
+    in the plane of the axes (that bound is conservative: the gear's tip passes it in the middle of the tooth space,
+    ``fillet_top``): on 40/76 at beta 6 deg of ``bench_robustness.py 100 2`` the synthesized coast pinion's sharp
+    blade still generates its junction 0.12 mm above the gear's face cone, 0.02 mm above the estimate of the gear's
+    tip contact, and the TCA shows the pinion's fillet at 2 of 41 positions with the derived 0.351 mm, at none from
+    0.25 mm down. The blade, the settings and the mean-point fit stay as they are (module docstring).
+
+    A radius whose pair shows an edge contact between the positions of the job's TCA (:func:`_short_edge_contact`) is
+    not taken (``res`` itself): the default search then goes on to its next candidate, which may keep the bearing
+    inside without it (14/48 and 16/31 of ``bench_robustness.py 100 2``).
+
+    ``flank`` : callable edge radius (mm) -> ToothFlank with ``res``'s blade and settings.
+    """
+    from ..errors import ConvergenceError, GeometryError
+    from ..machine.default_cutter import EDGE_RADIUS_FILL
+    from .facemilled import bearing_off_flank
+
+    gear = getattr(res, "gear_flank", None)
+    if gear is None:
+        return res
+    rho0 = float(res.pinion_cutter.edge_radius)
+
+    def off(r):
+        return bearing_off_flank(blank, flank(r), gear, TCA_RADIUS_POSITIONS)
+
+    try:
+        lo = 1e-3 * rho0
+        target, worst = off(lo), off(rho0)
+        if target >= worst:
+            return res
+        hi = rho0
+        while hi - lo > TCA_RADIUS_TOL * rho0:   # off(lo) <= target < off(hi)
+            mid = 0.5 * (lo + hi)
+            if off(mid) <= target:
+                lo = mid
+            else:
+                hi = mid
+        rho = EDGE_RADIUS_FILL * lo
+        if off(rho) > target:
+            rho = lo
+        new = flank(rho)
+        if _short_edge_contact(blank, new, gear):
+            return res
+    except (GeometryError, ConvergenceError):
+        return res
+    return dataclasses.replace(res, pinion_cutter=dataclasses.replace(res.pinion_cutter, edge_radius=rho),
+                               pinion_flank=new)
+
+
+#: TCA positions of the job's TCA (``job.tca.run_pair_tca``), between which ``gearset.tca.short_events`` looks
+JOB_TCA_POSITIONS = 21
+
+
+def _short_edge_contact(blank, pinion_flank, gear_flank) -> bool:
+    """Whether the pair's TCA at the job's ``JOB_TCA_POSITIONS`` shows an edge contact, at a position or leading
+    between two (``gearset.tca.short_events``): what the job's report and the robustness bench count as an edge
+    contact. True also where that TCA cannot be solved."""
+    from ..errors import ConvergenceError, NoContactError
+    from ..meshing.pair import meshing_pair
+    from ..meshing.tca import solve_tca
+    from .tca import short_events
+
+    pair = meshing_pair(pinion_flank, gear_flank, blank)
+    try:
+        res = solve_tca(pair.pinion, pair.gear, pair.kinematics, n_positions=JOB_TCA_POSITIONS, start=pair.start)
+    except (NoContactError, ConvergenceError):
+        return True
+    if np.any(res.edge_contact):
+        return True
+    return any(e["kind"] == "edge" for e in short_events(pair, res))

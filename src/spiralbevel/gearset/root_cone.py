@@ -24,8 +24,9 @@ synthesized pinion's root lay 0.12-14.2 mm below the root cone on 15 of the 40 d
 drive, side; 10/54 on both; 33/147 at beta 4.4 deg: 14.2 mm), which no check counted.
 The default synthesis puts such a root back on the root cone with the cutting-blade surface unchanged
 (:func:`~spiralbevel.gearset.pinion_fillet.raise_root`: the blade shortened along the cradle axis, the work moved by
-the same depth, the point width kept); a given point width is kept as given, and this check names its key with the
-width that would place the root.
+the same depth, the point width kept), measured by :func:`root_heights` as this check measures it, so that a placed
+root passes the check; a given point width is kept as given, and this check names its key with the width that would
+place the root.
 """
 
 from __future__ import annotations
