@@ -317,7 +317,8 @@ def _fit_edge_radius_by_tca(blank, res, flank):
     rho0 = float(res.pinion_cutter.edge_radius)
 
     def off(r):
-        return bearing_off_flank(blank, flank(r), gear, TCA_RADIUS_POSITIONS)
+        # at the positions only: the finer check between them is _short_edge_contact's, once, on the radius taken
+        return bearing_off_flank(blank, flank(r), gear, TCA_RADIUS_POSITIONS, between=False)
 
     try:
         lo = 1e-3 * rho0
