@@ -81,10 +81,11 @@ def test_compiled_assembly_matches_reference_kernel(pair, mis):
     S1, S2 = (np.ascontiguousarray(B.stack_state(*s)) for s in (st[:4], st[4:]))
     d, M2, L = prob._const
     E = np.empty((m, 2, 3))
-    N.basis_batch(S2, x, M2, E)
+    # assembly at x alone (no iteration: max_iter = 0), the basis rows from the gear normal
+    run = N.Iteration(m, 5, np.cos(phi1), np.sin(phi1), E, d, M2, L, -1, np.zeros(m), 0.0, 0, 1e-10, 0, 8)
+    assert run.begin(x, S1, S2) == 0
     np.testing.assert_allclose(E, np.stack([e1, e2], -2), atol=1e-14)
-    F, J, S1f, Q = np.empty((m, 5)), np.empty((m, 5, 5)), np.empty((m, 3, 6)), np.empty((m, 6, 6))
-    N.assemble_batch(S1, S2, np.cos(phi1), np.sin(phi1), x, d, M2, L, E, -1, np.zeros(m), F, J, S1f, Q)
+    F, J, S1f, Q = run.F, run.J, run.S1f, run.Q
     # rounding of products of ~100 mm terms: 1e-13 relative
     np.testing.assert_allclose(F, F_ref, atol=1e-11)
     np.testing.assert_allclose(J, J_ref, atol=1e-10)
@@ -146,16 +147,16 @@ def test_iteration_gives_up_on_systems_without_solution():
     x = np.array([np.full(5, 1.0), np.full(5, 0.5), np.full(5, 4.0)])
     m, tol, patience = 3, 1e-12, 3
     F, J = fun(x, np.arange(m))
-    res, best, stall, halved = np.empty(m), np.empty(m), np.zeros(m, np.int64), np.zeros(m, np.int64)
-    active, acc, dx, xn, idx = np.zeros(m, bool), np.zeros(m, bool), np.zeros((m, 5)), np.empty((m, 5)), \
-        np.empty(m, np.int64)
-    n_active, it, halvings_seen = N.start(F, J, tol, res, best, stall, halved, active), 0, 0
-    while it < 30 and n_active:
-        it += 1
-        c = N.propose(x, F, J, dx, halved, active, 1e-10, xn, idx)
-        Fn, Jn = fun(xn[:c], idx[:c])
-        n_active = N.accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience, 8, acc)
-        halvings_seen += int(np.sum(~acc[:c]))
+    # the systems are given, not assembled: the surface arguments are unused
+    run = N.Iteration(m, 5, np.zeros(m), np.zeros(m), np.zeros((m, 2, 3)), np.zeros(3), np.zeros((6, 3)), 1.0, -1,
+                      np.zeros(m), tol, 30, 1e-10, patience, 8)
+    c, halvings_seen = run.begin(x, F=F, J=J), 0
+    while c:
+        Fn, Jn = fun(run.xn[:c], run.idx[:c])
+        c_taken = c
+        c = run.advance(Fn=Fn, Jn=Jn)
+        halvings_seen += int(np.sum(~run.accepted[:c_taken]))
+    x, res, it = run.x, run.res, run.iterations
     conv = res < tol
     assert conv[0] and not conv[1] and conv[2]
     np.testing.assert_allclose(x[0], np.sqrt(2.0), rtol=1e-12)

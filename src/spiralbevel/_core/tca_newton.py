@@ -2,25 +2,36 @@
 
 Same equations and unknowns as :mod:`spiralbevel._core.tca` (seed 001 Eq. (16), docs/theory/tca.md, Eq. (T5)):
 x = (q1, q2, phi2), F in mm, surface data stacked per system as ``S (3, 6)`` with the columns (r, n, r_q0, r_q1,
-n_q0, n_q1) in the member frame (:func:`spiralbevel._core.tca_batch.stack_state`). Every function here is compiled
-(:mod:`spiralbevel._core.jit`) and is the only implementation of its rule:
+n_q0, n_q1) in the member frame (:func:`spiralbevel._core.tca_batch.stack_state`). Every rule here is compiled
+(:mod:`spiralbevel._core.jit`) and has one implementation:
 
 * :func:`assemble` -- F (k,) and J (k, 5) of one system (k = 6 with an anchor equation x_j = value);
 * :func:`step` -- the Newton step dx = -J^+ F: column equilibration; LU with partial pivoting where
   |det| > 5^2.5 rcond proves s_min / s_max > rcond (then the pseudo-inverse is the inverse), else the minimum-norm
   SVD step (line contact, anchored systems; one-sided Jacobi SVD, which compiles in a fraction of the time of
   numba's LAPACK binding); NaN for a non-finite system;
-* :func:`start`, :func:`propose`, :func:`accept` -- the batched iteration as reverse communication: ``propose``
-  gives the trial points of the active systems, the caller evaluates the surfaces there and assembles, ``accept``
-  applies the rules: a trial that leaves the surfaces (non-finite F or J) is retried with the step halved, up to
-  ``halvings`` times; a system whose residual has not halved its best value for ``patience`` consecutive iterations
-  is given up (Newton cycling or wandering: no solution near the start); converged when max|F| < tol.
-* :func:`newton_jets` -- the whole iteration in compiled code for surfaces with compiled jets
-  (:mod:`spiralbevel._core.jets`). Surfaces without one run the same ``propose``/``accept`` from Python
-  (:meth:`spiralbevel.meshing.contact_problem.ContactProblem.newton`), with numpy evaluating the surfaces.
+* the batched iteration (:func:`start`, :func:`propose`, :func:`accept`): ``propose`` gives the trial points of the
+  active systems, the surfaces are evaluated there and the systems assembled, ``accept`` applies the rules: a trial
+  that leaves the surfaces (non-finite F or J) is retried with the step halved, up to ``halvings`` times; a system
+  whose residual has not halved its best value for ``patience`` consecutive iterations is given up (Newton cycling
+  or wandering: no solution near the start); converged when max|F| < tol.
 
 Systems are independent: the batched iteration equals a per-system one, and ``iterations`` is the largest number of
 iterations any system took.
+
+Python reaches all of it through one kernel, :func:`newton_batch`, with one argument signature: the operation is a
+value read from an integer array (``iv[MODE]``), not a kernel of its own. numba links the IR of every callee into the
+module of each compiled function that reaches it, and LLVM optimises it again there: one entry point instead of nine
+optimises ``step`` (with its LU and SVD) and ``assemble`` once more here, not once per entry point, and compiles one
+function instead of nine (``_core/jit.py``; ``bench/bench_compile.py --ir``). The Python functions below allocate
+the arrays and call it:
+
+* :func:`newton_jets` -- the whole iteration in compiled code for surfaces with compiled jets
+  (:mod:`spiralbevel._core.jets`);
+* :class:`Iteration` -- the same iteration as reverse communication for surfaces without one: the caller evaluates
+  the surfaces at the trial points (by numpy, :meth:`spiralbevel.meshing.contact_problem.ContactProblem.newton`);
+* :func:`step_batch`, :func:`tangent_batch`, :func:`singular_batch` -- the step, the path tangent and the
+  line-contact test of a batch of systems.
 
 Constants of an assembly (:func:`spiralbevel._core.tca_batch.assembly_constants`): d = o1 - o2 (3,) mm,
 M2 = [B2; [a2]x B2] (6, 3), L mm the length scale of the normal equations.
@@ -38,16 +49,13 @@ from .linalg import copy1, copy2
 
 __all__ = [
     "assemble",
-    "assemble_batch",
     "basis_rows",
-    "basis_batch",
     "step",
+    "newton_batch",
+    "newton_jets",
+    "Iteration",
     "step_batch",
     "tangent_batch",
-    "start",
-    "propose",
-    "accept",
-    "newton_jets",
     "singular_batch",
 ]
 
@@ -78,11 +86,6 @@ def basis_rows(S2, c2, s2, M2, E):
     E[1, 2] = n0 * a1 - n1 * a0
 
 
-@kernel
-def basis_batch(S2, x, M2, E):
-    """:func:`basis_rows` for every row of ``S2 (m, 3, 6)`` at the gear angles ``x[:, 4]`` into ``E (m, 2, 3)``."""
-    for i in range(x.shape[0]):
-        basis_rows(S2[i], math.cos(x[i, 4]), math.sin(x[i, 4]), M2, E[i])
 
 
 @kernel
@@ -125,12 +128,6 @@ def assemble(S1, S2, c1, s1, x, d, M2, L, E, aj, aval, F, J, S1f, Q):
         J[5, aj] = L
 
 
-@kernel
-def assemble_batch(S1, S2, c1, s1, x, d, M2, L, E, aj, aval, F, J, S1f, Q):
-    """:func:`assemble` for every row: ``S1, S2 (m, 3, 6)``, ``c1, s1 (m,)``, ``x (m, 5)``, ``E (m, 2, 3)``,
-    ``aval (m,)``; outputs ``F (m, k)``, ``J (m, k, 5)``, ``S1f (m, 3, 6)``, ``Q (m, 6, 6)``."""
-    for i in range(x.shape[0]):
-        assemble(S1[i], S2[i], c1[i], s1[i], x[i], d, M2, L, E[i], aj, aval[i], F[i], J[i], S1f[i], Q[i])
 
 
 @kernel
@@ -141,7 +138,7 @@ def _all_finite(a):
     return True
 
 
-@kernel
+@kernel(inline="always")   # one call site: step
 def _lu_solve5(A, b, rcond, dx):
     """Solve A dx = b (5 x 5, unit columns) by LU with partial pivoting if |det A| > 5^2.5 rcond; False otherwise."""
     n = 5
@@ -201,7 +198,8 @@ def step(J, F, rcond, dx):
     """Newton step ``dx (5,)`` = -J^+ F of one system ``J (k, 5)``, ``F (k,)`` (see the module docstring)."""
     k = J.shape[0]
     if not (_all_finite(J) and _all_finite(F)):
-        dx[:] = math.nan
+        for j in range(5):
+            dx[j] = math.nan
         return
     Js, cn = _equilibrate(J)
     if k == 5:
@@ -275,31 +273,6 @@ def _jacobi_svd(A):
     return V
 
 
-@kernel
-def step_batch(J, F, rcond):
-    """:func:`step` for every row of ``J (m, k, 5)``, ``F (m, k)``; returns ``dx (m, 5)``."""
-    out = np.empty((J.shape[0], 5))
-    for i in range(J.shape[0]):
-        step(J[i], F[i], rcond, out[i])
-    return out
-
-
-@kernel
-def tangent_batch(J, S1f, E, L, rcond):
-    """Path tangent dx/dphi1 (m, 5) = -J^+ dF/dphi1 from ``J (m, k, 5)`` and the fixed-frame pinion data
-    ``S1f (m, 3, 6)`` (a1 = +z: a1 x v = (-v_y, v_x, 0); extra rows of J get dF/dphi1 = 0)."""
-    m, k = J.shape[0], J.shape[1]
-    out = np.empty((m, 5))
-    Fp = np.zeros(k)
-    for i in range(m):
-        Fp[0] = -S1f[i, 1, 0]
-        Fp[1] = S1f[i, 0, 0]
-        Fp[2] = 0.0
-        nx, ny = -S1f[i, 1, 1], S1f[i, 0, 1]
-        for a in range(2):
-            Fp[3 + a] = L * (E[i, a, 0] * nx + E[i, a, 1] * ny)
-        step(J[i], Fp, rcond, out[i])
-    return out
 
 
 @kernel
@@ -311,7 +284,7 @@ def _max_abs(a):
     return m
 
 
-@kernel
+@kernel(inline="always")   # one call site: newton_batch
 def start(F, J, tol, res, best, stall, halved, active):
     """Initial bookkeeping from the first evaluation ``F (M, k)``, ``J (M, k, 5)``; returns the number active."""
     count = 0
@@ -326,7 +299,7 @@ def start(F, J, tol, res, best, stall, halved, active):
     return count
 
 
-@kernel
+@kernel(inline="always")   # one call site: newton_batch
 def propose(x, F, J, dx, halved, active, rcond, xn, idx):
     """Trial points ``xn[:c]`` of the ``c`` active systems ``idx[:c]`` (fresh Newton step, or the halved previous
     one after a trial that left the surfaces); returns c."""
@@ -342,7 +315,7 @@ def propose(x, F, J, dx, halved, active, rcond, xn, idx):
     return c
 
 
-@kernel
+@kernel(inline="always")   # one call site: newton_batch
 def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience, halvings, acc):
     """Apply the trial evaluations ``Fn[:c]``, ``Jn[:c]`` (see the module docstring); ``acc[:c]`` tells which trials
     were taken (their surface data should be kept by the caller); returns the number still active."""
@@ -372,84 +345,9 @@ def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, to
     return count
 
 
-@kernel
-def newton_jets(kind1, p1, kind2, p2, c1, s1, x0, E, have_E, d, M2, L, aj, aval, tol, max_iter, rcond, patience,
-                halvings):
-    """The whole batched Newton for two surfaces with compiled jets (:func:`spiralbevel._core.jets.surface_jet`).
-
-    Parameters
-    ----------
-    kind1, p1, kind2, p2 : int, (k,) float
-        Jets of pinion and gear.
-    c1, s1 : (M,) float
-        cos, sin of the effective pinion angles.
-    x0 : (M, 5) float
-    E : (M, 2, 3) float
-        Basis rows of the normal equations; filled from the gear normal at x0 unless ``have_E``.
-    d, M2, L :
-        Assembly constants (module docstring).
-    aj, aval : int, (M,) float
-        Anchor equation x_aj = aval (aj < 0: none).
-    tol, max_iter, rcond, patience, halvings :
-        See the module docstring.
-
-    Returns
-    -------
-    x (M, 5), F (M, k), J (M, k, 5), res (M,), S1, S2 (M, 3, 6), S1f (M, 3, 6), Q (M, 6, 6), iterations
-    """
-    M = x0.shape[0]
-    k = 6 if aj >= 0 else 5
-    x = x0.copy()
-    F = np.empty((M, k))
-    J = np.empty((M, k, 5))
-    S1 = np.empty((M, 3, 6))
-    S2 = np.empty((M, 3, 6))
-    S1f = np.empty((M, 3, 6))
-    Q = np.empty((M, 6, 6))
-    for i in range(M):
-        surface_jet(kind1, p1, x[i, 0], x[i, 1], S1[i])
-        surface_jet(kind2, p2, x[i, 2], x[i, 3], S2[i])
-        if not have_E:
-            basis_rows(S2[i], math.cos(x[i, 4]), math.sin(x[i, 4]), M2, E[i])
-        assemble(S1[i], S2[i], c1[i], s1[i], x[i], d, M2, L, E[i], aj, aval[i], F[i], J[i], S1f[i], Q[i])
-    res = np.empty(M)
-    best = np.empty(M)
-    stall = np.zeros(M, np.int64)
-    halved = np.zeros(M, np.int64)
-    active = np.zeros(M, np.bool_)
-    dx = np.zeros((M, 5))
-    xn = np.empty((M, 5))
-    idx = np.empty(M, np.int64)
-    acc = np.empty(M, np.bool_)
-    Fn = np.empty((M, k))
-    Jn = np.empty((M, k, 5))
-    T1 = np.empty((M, 3, 6))
-    T2 = np.empty((M, 3, 6))
-    T1f = np.empty((M, 3, 6))
-    TQ = np.empty((M, 6, 6))
-    n_active = start(F, J, tol, res, best, stall, halved, active)
-    it = 0
-    while it < max_iter and n_active > 0:
-        it += 1
-        c = propose(x, F, J, dx, halved, active, rcond, xn, idx)
-        for t in range(c):
-            i = idx[t]
-            surface_jet(kind1, p1, xn[t, 0], xn[t, 1], T1[t])
-            surface_jet(kind2, p2, xn[t, 2], xn[t, 3], T2[t])
-            assemble(T1[t], T2[t], c1[i], s1[i], xn[t], d, M2, L, E[i], aj, aval[i], Fn[t], Jn[t], T1f[t], TQ[t])
-        n_active = accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience,
-                          halvings, acc)
-        for t in range(c):
-            if acc[t]:
-                i = idx[t]
-                copy2(S1[i], T1[t])   # copies by loops, not S1[i] = T1[t]: compile time (_core/jit.py)
-                copy2(S2[i], T2[t])
-                copy2(S1f[i], T1f[t])
-                copy2(Q[i], TQ[t])
-    return x, F, J, res, S1, S2, S1f, Q, it
 
 
-@kernel
+@kernel(inline="always")   # one call site: _singular
 def _qr_diag(A, d):
     """|R_kk| (k = 0..4) of a Householder QR of ``A (k, 5)`` (overwritten) into ``d (5,)``."""
     k, n = A.shape
@@ -477,17 +375,15 @@ def _qr_diag(A, d):
                 A[i, c] -= f * A[i, j]
 
 
-@kernel
-def singular_batch(J, tol):
-    """Whether s_min / s_max of the column-equilibrated ``J (m, k, 5)`` is below ``tol``, per system (line contact).
 
-    Certificates first, the Jacobi SVD only where they do not decide: with unit columns s_max >= 1 and, for the
-    triangular factor R of a QR decomposition, s_min <= min_j |R_jj|: singular when min_j |R_jj| < tol; regular when
-    |det| = prod_j |R_jj| > 5^2.5 tol (see :func:`step`). Non-finite systems are not singular."""
-    m = J.shape[0]
-    out = np.zeros(m, np.bool_)
+
+@kernel(inline="always")   # one call site: newton_batch
+def _singular(J, tol, out):
+    """``out[i]``: whether s_min / s_max of the column-equilibrated ``J[i] (k, 5)`` is below ``tol`` (line contact;
+    see :func:`singular_batch`)."""
     d = np.empty(5)
-    for i in range(m):
+    for i in range(J.shape[0]):
+        out[i] = False
         if not _all_finite(J[i]):
             continue
         A, _ = _equilibrate(J[i])
@@ -509,4 +405,279 @@ def singular_batch(J, tol):
                 s = math.sqrt(acc)
                 smin, smax = min(smin, s), max(smax, s)
             out[i] = smin < tol * smax
+
+
+# operations of newton_batch (iv[MODE])
+JETS, BEGIN, ADVANCE, START, ACCEPT, STEP, TANGENT, SINGULAR = range(8)
+# entries of its integer vector iv; ``C``, ``IT``, ``N_ACTIVE`` are written back
+MODE, KIND1, KIND2, HAVE_E, AJ, MAX_ITER, PATIENCE, HALVINGS, C, IT, N_ACTIVE = range(11)
+# entries of its float vector fv
+SCALE, TOL, RCOND = range(3)
+
+
+@kernel
+def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q, xn, Fn, Jn, T1, T2, T1f, TQ, dx, res,
+                 best, stall, halved, idx, active, acc):
+    """Every batched operation of this module, chosen by ``iv[MODE]`` (one kernel, one argument signature).
+
+    Parameters
+    ----------
+    iv : (11,) int64
+        ``MODE``; the jets ``KIND1``, ``KIND2`` of pinion and gear (:mod:`spiralbevel._core.jets`); ``HAVE_E`` (0: fill
+        the basis rows ``E`` from the gear normal at x); the anchor row ``AJ`` (< 0: none); ``MAX_ITER``,
+        ``PATIENCE``, ``HALVINGS`` (module docstring); written back: ``C`` the number of trial points ``xn[:C]``
+        (systems ``idx[:C]``) to evaluate, ``IT`` the iterations so far, ``N_ACTIVE`` the systems still iterating.
+    fv : (3,) float
+        ``SCALE`` L (mm), ``TOL`` (mm on max|F|; the s_min / s_max threshold for ``SINGULAR``), ``RCOND``.
+    p1, p2 : (k,) float
+        Jet parameters of pinion and gear (``JETS``).
+    c1, s1, aval : (M,) float
+        cos, sin of the effective pinion angles; anchor values.
+    d, M2 :
+        Assembly constants (module docstring).
+    x (M, 5), E (M, 2, 3), F (M, k), J (M, k, 5), S1, S2, S1f (M, 3, 6), Q (M, 6, 6) : float
+        Iterates, basis rows, systems and surface data at the iterates (member frame; S1f, Q fixed frame).
+    xn (M, 5), Fn (M, k), Jn (M, k, 5), T1, T2, T1f (M, 3, 6), TQ (M, 6, 6) : float
+        The same at the trial points.
+    dx (M, 5), res, best (M,) float; stall, halved, idx (M,) int64; active, acc (M,) bool
+        Steps and the bookkeeping of the iteration.
+
+    Notes
+    -----
+    ``JETS``: the whole iteration from x, the surfaces evaluated by their compiled jets. ``BEGIN``: assembly at x
+    from the member-frame data ``S1, S2`` evaluated by the caller, then the first trial points. ``ADVANCE``: assembly
+    at the trial points from ``T1, T2`` evaluated by the caller, the rules, the next trial points. ``START`` and
+    ``ACCEPT``: as ``BEGIN`` and ``ADVANCE`` with the systems ``F, J`` (``Fn, Jn``) given instead of assembled.
+    ``STEP``: ``dx`` = the step of every system ``J, F``. ``TANGENT``: ``dx`` = the path tangent dx/dphi1 =
+    -J^+ dF/dphi1 from ``J`` and ``S1f`` (a1 = +z: a1 x v = (-v_y, v_x, 0); extra rows of J get dF/dphi1 = 0).
+    ``SINGULAR``: ``active`` = whether s_min / s_max of the column-equilibrated J is below ``TOL``
+    (:func:`singular_batch`). Arrays a mode does not use may be empty.
+    """
+    mode = iv[MODE]
+    L, tol, rcond = fv[SCALE], fv[TOL], fv[RCOND]
+    if mode == STEP:
+        for i in range(J.shape[0]):
+            step(J[i], F[i], rcond, dx[i])
+        return
+    if mode == TANGENT:
+        k = J.shape[1]
+        Fp = np.zeros(k)
+        for i in range(J.shape[0]):
+            Fp[0] = -S1f[i, 1, 0]
+            Fp[1] = S1f[i, 0, 0]
+            Fp[2] = 0.0
+            nx, ny = -S1f[i, 1, 1], S1f[i, 0, 1]
+            for a in range(2):
+                Fp[3 + a] = L * (E[i, a, 0] * nx + E[i, a, 1] * ny)
+            step(J[i], Fp, rcond, dx[i])
+        return
+    if mode == SINGULAR:
+        _singular(J, tol, active)
+        return
+    kind1, kind2, aj = iv[KIND1], iv[KIND2], iv[AJ]
+    max_iter, patience, halvings = iv[MAX_ITER], iv[PATIENCE], iv[HALVINGS]
+    first = mode == JETS or mode == BEGIN or mode == START
+    assembled = mode != START and mode != ACCEPT
+    if first and assembled:
+        for i in range(x.shape[0]):
+            if mode == JETS:
+                surface_jet(kind1, p1, x[i, 0], x[i, 1], S1[i])
+                surface_jet(kind2, p2, x[i, 2], x[i, 3], S2[i])
+            if iv[HAVE_E] == 0:
+                basis_rows(S2[i], math.cos(x[i, 4]), math.sin(x[i, 4]), M2, E[i])
+            assemble(S1[i], S2[i], c1[i], s1[i], x[i], d, M2, L, E[i], aj, aval[i], F[i], J[i], S1f[i], Q[i])
+    it, c, n_active = 0, 0, 0
+    if first:
+        n_active = start(F, J, tol, res, best, stall, halved, active)
+    else:
+        it, c = iv[IT], iv[C]
+    pending = not first   # trial points evaluated, to be applied
+    while True:
+        if pending:
+            for t in range(c):
+                i = idx[t]
+                if mode == JETS:
+                    surface_jet(kind1, p1, xn[t, 0], xn[t, 1], T1[t])
+                    surface_jet(kind2, p2, xn[t, 2], xn[t, 3], T2[t])
+                if assembled:
+                    assemble(T1[t], T2[t], c1[i], s1[i], xn[t], d, M2, L, E[i], aj, aval[i], Fn[t], Jn[t], T1f[t],
+                             TQ[t])
+            n_active = accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience,
+                              halvings, acc)
+            if assembled:
+                for t in range(c):
+                    if acc[t]:
+                        i = idx[t]
+                        copy2(S1[i], T1[t])   # copies by loops, not S1[i] = T1[t]: compile time (_core/jit.py)
+                        copy2(S2[i], T2[t])
+                        copy2(S1f[i], T1f[t])
+                        copy2(Q[i], TQ[t])
+        c = 0
+        if it < max_iter and n_active > 0:
+            it += 1
+            c = propose(x, F, J, dx, halved, active, rcond, xn, idx)
+        if mode != JETS or c == 0:
+            break
+        pending = True
+    iv[C], iv[IT], iv[N_ACTIVE] = c, it, n_active
+
+
+_F1, _F2, _F3 = np.empty(0), np.empty((0, 0)), np.empty((0, 0, 0))
+_I1, _B1 = np.empty(0, np.int64), np.empty(0, np.bool_)
+_ARGS = {"p1": _F1, "p2": _F1, "c1": _F1, "s1": _F1, "aval": _F1, "d": _F1, "M2": _F2, "x": _F2, "E": _F3, "F": _F2,
+         "J": _F3, "S1": _F3, "S2": _F3, "S1f": _F3, "Q": _F3, "xn": _F2, "Fn": _F2, "Jn": _F3, "T1": _F3, "T2": _F3,
+         "T1f": _F3, "TQ": _F3, "dx": _F2, "res": _F1, "best": _F1, "stall": _I1, "halved": _I1, "idx": _I1,
+         "active": _B1, "acc": _B1}
+
+
+def _call(mode, ints=(), fv=(0.0, 0.0, 0.0), **arrays):
+    """:func:`newton_batch` with the integer vector ``(mode, *ints)`` (zeros after) and empty unused arrays."""
+    iv = np.zeros(11, np.int64)
+    iv[MODE] = mode
+    iv[1:1 + len(ints)] = ints
+    newton_batch(iv, np.array(fv, float), *(arrays.get(n, e) for n, e in _ARGS.items()))
+    return iv
+
+
+def _arr(a):
+    """``a`` as a writable, aligned, C-contiguous float64 array (copied only if needed): one argument type."""
+    return np.require(a, np.float64, "CWA")
+
+
+def _consts(d, M2):
+    return _arr(d), _arr(M2)
+
+
+def newton_jets(kind1, p1, kind2, p2, c1, s1, x0, E, have_E, d, M2, L, aj, aval, tol, max_iter, rcond, patience,
+                halvings):
+    """The whole batched Newton for two surfaces with compiled jets (:func:`spiralbevel._core.jets.surface_jet`).
+
+    Parameters
+    ----------
+    kind1, p1, kind2, p2 : int, (k,) float
+        Jets of pinion and gear.
+    c1, s1 : (M,) float
+        cos, sin of the effective pinion angles.
+    x0 : (M, 5) float
+    E : (M, 2, 3) float
+        Basis rows of the normal equations; filled from the gear normal at x0 unless ``have_E``.
+    d, M2, L :
+        Assembly constants (module docstring).
+    aj, aval : int, (M,) float
+        Anchor equation x_aj = aval (aj < 0: none).
+    tol, max_iter, rcond, patience, halvings :
+        See the module docstring.
+
+    Returns
+    -------
+    x (M, 5), F (M, k), J (M, k, 5), res (M,), S1, S2 (M, 3, 6), S1f (M, 3, 6), Q (M, 6, 6), iterations
+    """
+    M = x0.shape[0]
+    k = 6 if aj >= 0 else 5
+    it = Iteration(M, k, c1, s1, E, d, M2, L, aj, aval, tol, max_iter, rcond, patience, halvings)
+    it.x[:] = x0
+    a = it.arrays
+    S1, S2 = np.empty((M, 3, 6)), np.empty((M, 3, 6))
+    iv = _call(JETS, (kind1, kind2, bool(have_E), aj, max_iter, patience, halvings), it.fv, p1=_arr(p1),
+               p2=_arr(p2), S1=S1, S2=S2, T1=np.empty((M, 3, 6)), T2=np.empty((M, 3, 6)), **a)
+    return it.x, it.F, it.J, it.res, S1, S2, it.S1f, it.Q, int(iv[IT])
+
+
+class Iteration:
+    """The batched Newton as reverse communication, for surfaces that the caller evaluates (by numpy).
+
+    ``begin`` assembles the systems at the start and returns the number ``c`` of trial points ``xn[:c]`` (systems
+    ``idx[:c]``); the caller evaluates the surfaces there and hands them to ``advance``, which returns the next ``c``;
+    c = 0 when every system has converged, been given up or reached ``max_iter`` (:func:`newton_batch`).
+
+    Parameters
+    ----------
+    M, k : int
+        Number of systems, equations per system (6 with an anchor).
+    c1, s1, E, d, M2, L, aj, aval, tol, max_iter, rcond, patience, halvings :
+        As :func:`newton_jets`.
+
+    Attributes
+    ----------
+    x (M, 5), F (M, k), J (M, k, 5), res (M,), E (M, 2, 3), S1f (M, 3, 6), Q (M, 6, 6) : float
+        Iterates, their systems and residuals max|F| (inf: not finite), basis rows, fixed-frame data.
+    xn (M, 5) float, idx (M,) int
+        Trial points and their systems (the first ``c``).
+    accepted (M,) bool
+        Which of the last ``c`` trials were taken (the others are retried with the step halved).
+    iterations : int
+    """
+
+    def __init__(self, M, k, c1, s1, E, d, M2, L, aj, aval, tol, max_iter, rcond, patience, halvings):
+        d, M2 = _consts(d, M2)
+        self.fv = (float(L), float(tol), float(rcond))
+        self.ints = (0, 0, 0, int(aj), int(max_iter), int(patience), int(halvings))
+        c1, s1, aval, E = _arr(c1), _arr(s1), _arr(aval), _arr(E)
+        self.x, self.E = np.empty((M, 5)), E
+        self.F, self.J = np.empty((M, k)), np.empty((M, k, 5))
+        self.S1f, self.Q = np.empty((M, 3, 6)), np.empty((M, 6, 6))
+        self.res, self.accepted = np.empty(M), np.zeros(M, np.bool_)
+        self.xn, self.idx = np.empty((M, 5)), np.empty(M, np.int64)
+        self.arrays = dict(c1=c1, s1=s1, aval=aval, d=d, M2=M2, x=self.x, E=E, F=self.F, J=self.J, S1f=self.S1f,
+                           Q=self.Q, xn=self.xn, Fn=np.empty((M, k)), Jn=np.empty((M, k, 5)), T1f=np.empty((M, 3, 6)),
+                           TQ=np.empty((M, 6, 6)), dx=np.zeros((M, 5)), res=self.res, best=np.empty(M),
+                           stall=np.zeros(M, np.int64), halved=np.zeros(M, np.int64), idx=self.idx,
+                           active=np.zeros(M, np.bool_), acc=self.accepted)
+        self.iterations = 0
+        self._S = None
+
+    def _run(self, mode, ints, **arrays):
+        iv = _call(mode, ints, self.fv, **{**self.arrays, **arrays})
+        self.iterations = int(iv[IT])
+        self._iv = iv
+        return int(iv[C])
+
+    def begin(self, x0, S1=None, S2=None, have_E=False, F=None, J=None):
+        """Start from ``x0 (M, 5)`` with the member-frame surface data ``S1, S2 (M, 3, 6)`` there (the basis rows
+        ``E`` filled from the gear normal unless ``have_E``), or with the systems ``F, J`` given; returns c."""
+        self.x[:] = x0
+        ints = (0, 0, int(bool(have_E))) + self.ints[3:]
+        if S1 is None:
+            self.F[:], self.J[:] = F, J
+            return self._run(START, ints)
+        self._S = (S1, S2)
+        return self._run(BEGIN, ints, S1=S1, S2=S2)
+
+    def advance(self, T1=None, T2=None, Fn=None, Jn=None):
+        """Apply the member-frame surface data ``T1, T2 (c, 3, 6)`` at the trial points (the accepted ones are copied
+        into ``S1, S2`` of :meth:`begin`), or the systems ``Fn (c, k)``, ``Jn (c, k, 5)`` there; returns the next c."""
+        ints = (0, 0, 0) + self.ints[3:] + (int(self._iv[C]), self.iterations)
+        if T1 is None:
+            return self._run(ACCEPT, ints, Fn=_arr(Fn), Jn=_arr(Jn))
+        S1, S2 = self._S
+        return self._run(ADVANCE, ints, S1=S1, S2=S2, T1=T1, T2=T2)
+
+
+def step_batch(J, F, rcond):
+    """:func:`step` for every row of ``J (m, k, 5)``, ``F (m, k)``; returns ``dx (m, 5)``."""
+    J, F = _arr(J), _arr(F)
+    dx = np.empty((J.shape[0], 5))
+    _call(STEP, (), (0.0, 0.0, float(rcond)), J=J, F=F, dx=dx)
+    return dx
+
+
+def tangent_batch(J, S1f, E, L, rcond):
+    """Path tangent dx/dphi1 (m, 5) = -J^+ dF/dphi1 from ``J (m, k, 5)`` and the fixed-frame pinion data
+    ``S1f (m, 3, 6)``, basis rows ``E (m, 2, 3)`` (see :func:`newton_batch`)."""
+    J = _arr(J)
+    dx = np.empty((J.shape[0], 5))
+    _call(TANGENT, (), (float(L), 0.0, float(rcond)), J=J, S1f=_arr(S1f),
+          E=_arr(E), dx=dx)
+    return dx
+
+
+def singular_batch(J, tol):
+    """Whether s_min / s_max of the column-equilibrated ``J (m, k, 5)`` is below ``tol``, per system (line contact).
+
+    Certificates first, the Jacobi SVD only where they do not decide: with unit columns s_max >= 1 and, for the
+    triangular factor R of a QR decomposition, s_min <= min_j |R_jj|: singular when min_j |R_jj| < tol; regular when
+    |det| = prod_j |R_jj| > 5^2.5 tol (see :func:`step`). Non-finite systems are not singular."""
+    J = _arr(J)
+    out = np.zeros(J.shape[0], np.bool_)
+    _call(SINGULAR, (), (0.0, float(tol), 0.0), J=J, active=out)
     return out
