@@ -130,7 +130,7 @@ def assemble(S1, S2, c1, s1, x, d, M2, L, E, aj, aval, F, J, S1f, Q):
 
 
 
-@kernel
+@kernel(inline="always")   # a few statements: cheaper typed at each call site than compiled alone
 def _all_finite(a):
     for v in a.flat:
         if not math.isfinite(v):
@@ -275,7 +275,7 @@ def _jacobi_svd(A):
 
 
 
-@kernel
+@kernel(inline="always")   # a few statements (see _all_finite)
 def _max_abs(a):
     m = 0.0
     for v in a:
