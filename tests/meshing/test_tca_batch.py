@@ -1,6 +1,7 @@
-"""Compiled TCA kernels (spiralbevel._core.tca_newton, spiralbevel._core.logspiral_jet) against the reference
-numpy kernels of spiralbevel._core.tca, plain SVD, the closed forms of spiralbevel._core.logspiral and a plain
-per-point Newton; the give-up rule of the batched iteration; and the numba cache fallback."""
+"""Compiled TCA kernels (spiralbevel._core.tca_newton, called through tca_solve; spiralbevel._core.logspiral_jet)
+against the reference numpy kernels of spiralbevel._core.tca, plain SVD, the closed forms of
+spiralbevel._core.logspiral and a plain per-point Newton; the give-up rule of the batched iteration; and the numba
+cache fallback."""
 
 import numpy as np
 import pytest
@@ -8,7 +9,7 @@ import pytest
 from spiralbevel._core import logspiral as LS
 from spiralbevel._core import tca as K
 from spiralbevel._core import tca_batch as B
-from spiralbevel._core import tca_newton as N
+from spiralbevel._core import tca_solve as N
 from spiralbevel.meshing.contact_problem import ContactProblem
 from spiralbevel.meshing.kinematics import BevelPairKinematics
 from spiralbevel.meshing.misalignment import Misalignment
@@ -85,7 +86,7 @@ def test_compiled_assembly_matches_reference_kernel(pair, mis):
     run = N.Iteration(m, 5, np.cos(phi1), np.sin(phi1), E, d, M2, L, -1, np.zeros(m), 0.0, 0, 1e-10, 0, 8)
     assert run.begin(x, S1, S2) == 0
     np.testing.assert_allclose(E, np.stack([e1, e2], -2), atol=1e-14)
-    F, J, S1f, Q = run.F, run.J, run.S1f, run.Q
+    F, J, S1f = run.F, run.J, run.S1f
     # rounding of products of ~100 mm terms: 1e-13 relative
     np.testing.assert_allclose(F, F_ref, atol=1e-11)
     np.testing.assert_allclose(J, J_ref, atol=1e-10)

@@ -1,4 +1,4 @@
-"""Compiled batched Newton of tooth contact analysis: system assembly, the 5 x 5 step, the give-up rule.
+"""Compiled batched Newton of tooth contact analysis: system assembly and the batched iteration with its give-up rule.
 
 Same equations and unknowns as :mod:`spiralbevel._core.tca` (seed 001 Eq. (16), docs/theory/tca.md, Eq. (T5)):
 x = (q1, q2, phi2), F in mm, surface data stacked per system as ``S (3, 6)`` with the columns (r, n, r_q0, r_q1,
@@ -6,10 +6,8 @@ n_q0, n_q1) in the member frame (:func:`spiralbevel._core.tca_batch.stack_state`
 (:mod:`spiralbevel._core.jit`) and has one implementation:
 
 * :func:`assemble` -- F (k,) and J (k, 5) of one system (k = 6 with an anchor equation x_j = value);
-* :func:`step` -- the Newton step dx = -J^+ F: column equilibration; LU with partial pivoting where
-  |det| > 5^2.5 rcond proves s_min / s_max > rcond (then the pseudo-inverse is the inverse), else the minimum-norm
-  SVD step (line contact, anchored systems; one-sided Jacobi SVD, which compiles in a fraction of the time of
-  numba's LAPACK binding); NaN for a non-finite system;
+* the Newton step :func:`spiralbevel._core.tca_step.step` (LU where a determinant bound proves the system regular,
+  else the minimum-norm SVD step);
 * the batched iteration (:func:`start`, :func:`propose`, :func:`accept`): ``propose`` gives the trial points of the
   active systems, the surfaces are evaluated there and the systems assembled, ``accept`` applies the rules: a trial
   that leaves the surfaces (non-finite F or J) is retried with the step halved, up to ``halvings`` times; a system
@@ -22,16 +20,10 @@ iterations any system took.
 Python reaches all of it through one kernel, :func:`newton_batch`, with one argument signature: the operation is a
 value read from an integer array (``iv[MODE]``), not a kernel of its own. numba links the IR of every callee into the
 module of each compiled function that reaches it, and LLVM optimises it again there: one entry point instead of nine
-optimises ``step`` (with its LU and SVD) and ``assemble`` once more here, not once per entry point, and compiles one
-function instead of nine (``_core/jit.py``; ``bench/bench_compile.py --ir``). The Python functions below allocate
-the arrays and call it:
-
-* :func:`newton_jets` -- the whole iteration in compiled code for surfaces with compiled jets
-  (:mod:`spiralbevel._core.jets`);
-* :class:`Iteration` -- the same iteration as reverse communication for surfaces without one: the caller evaluates
-  the surfaces at the trial points (by numpy, :meth:`spiralbevel.meshing.contact_problem.ContactProblem.newton`);
-* :func:`step_batch`, :func:`tangent_batch`, :func:`singular_batch` -- the step, the path tangent and the
-  line-contact test of a batch of systems.
+optimises ``step`` (with its LU and SVD) and ``assemble`` once here, not once per entry point, and compiles one
+function instead of nine (``_core/jit.py``; ``bench/bench_compile.py --ir``). :mod:`spiralbevel._core.tca_solve`
+allocates the arrays and calls it (the whole iteration for surfaces with compiled jets, reverse communication for
+surfaces evaluated by numpy, the step, the path tangent and the line-contact test of a batch).
 
 Constants of an assembly (:func:`spiralbevel._core.tca_batch.assembly_constants`): d = o1 - o2 (3,) mm,
 M2 = [B2; [a2]x B2] (6, 3), L mm the length scale of the normal equations.
@@ -46,23 +38,9 @@ import numpy as np
 from .jets import surface_jet
 from .jit import kernel
 from .linalg import copy1, copy2
+from .tca_step import all_finite, max_abs, singular_rows, step
 
-__all__ = [
-    "assemble",
-    "basis_rows",
-    "step",
-    "newton_batch",
-    "newton_jets",
-    "Iteration",
-    "step_batch",
-    "tangent_batch",
-    "singular_batch",
-]
-
-#: |det| of a matrix with unit columns bounds its singular values: s_min / s_max >= |det| / s_max^5 and
-#: s_max <= sqrt(5) (Frobenius), so |det| > 5^2.5 * rcond guarantees s_min / s_max > rcond.
-_DET_BOUND = 5.0 ** 2.5
-
+__all__ = ["assemble", "basis_rows", "step", "start", "propose", "accept", "newton_batch"]
 
 @kernel
 def basis_rows(S2, c2, s2, M2, E):
@@ -130,167 +108,14 @@ def assemble(S1, S2, c1, s1, x, d, M2, L, E, aj, aval, F, J, S1f, Q):
 
 
 
-@kernel(inline="always")   # a few statements: cheaper typed at each call site than compiled alone
-def _all_finite(a):
-    for v in a.flat:
-        if not math.isfinite(v):
-            return False
-    return True
-
-
-@kernel(inline="always")   # one call site: step
-def _lu_solve5(A, b, rcond, dx):
-    """Solve A dx = b (5 x 5, unit columns) by LU with partial pivoting if |det A| > 5^2.5 rcond; False otherwise."""
-    n = 5
-    U = A.copy()
-    y = b.copy()
-    det = 1.0
-    for k in range(n):
-        p = k
-        big = abs(U[k, k])
-        for i in range(k + 1, n):
-            if abs(U[i, k]) > big:
-                big = abs(U[i, k])
-                p = i
-        if p != k:
-            det = -det
-            for j in range(n):
-                U[k, j], U[p, j] = U[p, j], U[k, j]
-            y[k], y[p] = y[p], y[k]
-        piv = U[k, k]
-        det *= piv
-        if piv == 0.0:
-            return False
-        for i in range(k + 1, n):
-            f = U[i, k] / piv
-            U[i, k] = f
-            for j in range(k + 1, n):
-                U[i, j] -= f * U[k, j]
-            y[i] -= f * y[k]
-    if not abs(det) > _DET_BOUND * rcond:
-        return False
-    for k in range(n - 1, -1, -1):
-        acc = y[k]
-        for j in range(k + 1, n):
-            acc -= U[k, j] * dx[j]
-        dx[k] = acc / U[k, k]
-    return True
-
-
-@kernel
-def _equilibrate(J):
-    k, n = J.shape
-    cn = np.empty(n)
-    Js = np.empty((k, n))
-    for j in range(n):
-        acc = 0.0
-        for i in range(k):
-            acc += J[i, j] * J[i, j]
-        c = math.sqrt(acc)
-        cn[j] = c if c > 0 else 1.0
-        for i in range(k):
-            Js[i, j] = J[i, j] / cn[j]
-    return Js, cn
-
-
-@kernel
-def step(J, F, rcond, dx):
-    """Newton step ``dx (5,)`` = -J^+ F of one system ``J (k, 5)``, ``F (k,)`` (see the module docstring)."""
-    k = J.shape[0]
-    if not (_all_finite(J) and _all_finite(F)):
-        for j in range(5):
-            dx[j] = math.nan
-        return
-    Js, cn = _equilibrate(J)
-    if k == 5:
-        b = np.empty(5)
-        for i in range(5):
-            b[i] = -F[i]
-        if _lu_solve5(Js, b, rcond, dx):
-            for j in range(5):
-                dx[j] /= cn[j]
-            return
-    # minimum-norm least-squares step with singular values below rcond s_max discarded (contact line)
-    A, cn2 = _equilibrate(Js)
-    V = _jacobi_svd(A)
-    smax = 0.0
-    sv = np.empty(5)
-    for a in range(5):
-        acc = 0.0
-        for i in range(k):
-            acc += A[i, a] * A[i, a]
-        sv[a] = math.sqrt(acc)
-        smax = max(smax, sv[a])
-    y = np.zeros(5)
-    for a in range(5):
-        if sv[a] > rcond * smax:
-            acc = 0.0
-            for i in range(k):
-                acc -= A[i, a] * F[i]
-            y[a] = acc / (sv[a] * sv[a])  # column a of A is s_a u_a
-    for j in range(5):
-        acc = 0.0
-        for a in range(5):
-            acc += V[j, a] * y[a]
-        dx[j] = acc / cn2[j] / cn[j]
-
-
-@kernel
-def _jacobi_svd(A):
-    """One-sided Jacobi SVD (Hestenes) of ``A (k, 5)``, k >= 5, in place: on return the columns of A are s_a u_a
-    (mutually orthogonal) and ``V (5, 5)`` is returned, A_in = A_out V^T. Rotations until every pair of columns is
-    orthogonal to 1e-15 relative (high relative accuracy; a few sweeps for 5 columns)."""
-    k, n = A.shape
-    V = np.eye(n)
-    for _ in range(60):
-        rotated = False
-        for p in range(n - 1):
-            for q in range(p + 1, n):
-                alpha = 0.0
-                beta = 0.0
-                gamma = 0.0
-                for i in range(k):
-                    alpha += A[i, p] * A[i, p]
-                    beta += A[i, q] * A[i, q]
-                    gamma += A[i, p] * A[i, q]
-                if gamma == 0.0 or abs(gamma) <= 1e-15 * math.sqrt(alpha * beta):
-                    continue
-                rotated = True
-                zeta = (beta - alpha) / (2.0 * gamma)
-                t = (1.0 if zeta >= 0 else -1.0) / (abs(zeta) + math.sqrt(1.0 + zeta * zeta))
-                c = 1.0 / math.sqrt(1.0 + t * t)
-                s = c * t
-                for i in range(k):
-                    up, uq = A[i, p], A[i, q]
-                    A[i, p] = c * up - s * uq
-                    A[i, q] = s * up + c * uq
-                for i in range(n):
-                    vp, vq = V[i, p], V[i, q]
-                    V[i, p] = c * vp - s * vq
-                    V[i, q] = s * vp + c * vq
-        if not rotated:
-            break
-    return V
-
-
-
-
-@kernel(inline="always")   # a few statements (see _all_finite)
-def _max_abs(a):
-    m = 0.0
-    for v in a:
-        if abs(v) > m:
-            m = abs(v)
-    return m
-
 
 @kernel(inline="always")   # one call site: newton_batch
 def start(F, J, tol, res, best, stall, halved, active):
     """Initial bookkeeping from the first evaluation ``F (M, k)``, ``J (M, k, 5)``; returns the number active."""
     count = 0
     for i in range(F.shape[0]):
-        ok = _all_finite(F[i]) and _all_finite(J[i])
-        res[i] = _max_abs(F[i]) if ok else math.inf
+        ok = all_finite(F[i]) and all_finite(J[i])
+        res[i] = max_abs(F[i]) if ok else math.inf
         best[i] = res[i]
         stall[i] = 0
         halved[i] = 0
@@ -321,7 +146,7 @@ def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, to
     were taken (their surface data should be kept by the caller); returns the number still active."""
     for t in range(c):
         i = idx[t]
-        fin = _all_finite(Fn[t]) and _all_finite(Jn[t])
+        fin = all_finite(Fn[t]) and all_finite(Jn[t])
         if not fin and halved[i] < halvings:
             for j in range(5):
                 dx[i, j] *= 0.5
@@ -333,7 +158,7 @@ def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, to
         copy1(F[i], Fn[t])
         copy2(J[i], Jn[t])
         halved[i] = 0
-        r = _max_abs(Fn[t]) if fin else math.inf
+        r = max_abs(Fn[t]) if fin else math.inf
         res[i] = r
         better = r < 0.5 * best[i]
         best[i] = min(best[i], r)
@@ -347,67 +172,7 @@ def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, to
 
 
 
-@kernel(inline="always")   # one call site: _singular
-def _qr_diag(A, d):
-    """|R_kk| (k = 0..4) of a Householder QR of ``A (k, 5)`` (overwritten) into ``d (5,)``."""
-    k, n = A.shape
-    for j in range(n):
-        nrm = 0.0
-        for i in range(j, k):
-            nrm += A[i, j] * A[i, j]
-        nrm = math.sqrt(nrm)
-        d[j] = nrm
-        if nrm == 0.0:
-            continue
-        alpha = -nrm if A[j, j] >= 0 else nrm
-        A[j, j] -= alpha  # v = a - alpha e_j, stored in column j
-        vv = 0.0
-        for i in range(j, k):
-            vv += A[i, j] * A[i, j]
-        if vv == 0.0:
-            continue
-        for c in range(j + 1, n):
-            dot = 0.0
-            for i in range(j, k):
-                dot += A[i, j] * A[i, c]
-            f = 2.0 * dot / vv
-            for i in range(j, k):
-                A[i, c] -= f * A[i, j]
 
-
-
-
-@kernel(inline="always")   # one call site: newton_batch
-def _singular(J, tol, out):
-    """``out[i]``: whether s_min / s_max of the column-equilibrated ``J[i] (k, 5)`` is below ``tol`` (line contact;
-    see :func:`singular_batch`)."""
-    d = np.empty(5)
-    for i in range(J.shape[0]):
-        out[i] = False
-        if not _all_finite(J[i]):
-            continue
-        A, _ = _equilibrate(J[i])
-        B = A.copy()
-        _qr_diag(B, d)
-        dmin, prod = d[0], 1.0
-        for j in range(5):
-            dmin = min(dmin, d[j])
-            prod *= d[j]
-        if dmin < tol:
-            out[i] = True
-        elif not prod > _DET_BOUND * tol:
-            _jacobi_svd(A)
-            smin, smax = math.inf, 0.0
-            for a in range(5):
-                acc = 0.0
-                for r in range(A.shape[0]):
-                    acc += A[r, a] * A[r, a]
-                s = math.sqrt(acc)
-                smin, smax = min(smin, s), max(smax, s)
-            out[i] = smin < tol * smax
-
-
-# operations of newton_batch (iv[MODE])
 JETS, BEGIN, ADVANCE, START, ACCEPT, STEP, TANGENT, SINGULAR = range(8)
 # entries of its integer vector iv; ``C``, ``IT``, ``N_ACTIVE`` are written back
 MODE, KIND1, KIND2, HAVE_E, AJ, MAX_ITER, PATIENCE, HALVINGS, C, IT, N_ACTIVE = range(11)
@@ -472,7 +237,7 @@ def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q
             step(J[i], Fp, rcond, dx[i])
         return
     if mode == SINGULAR:
-        _singular(J, tol, active)
+        singular_rows(J, tol, active)
         return
     kind1, kind2, aj = iv[KIND1], iv[KIND2], iv[AJ]
     max_iter, patience, halvings = iv[MAX_ITER], iv[PATIENCE], iv[HALVINGS]
@@ -521,163 +286,3 @@ def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q
         pending = True
     iv[C], iv[IT], iv[N_ACTIVE] = c, it, n_active
 
-
-_F1, _F2, _F3 = np.empty(0), np.empty((0, 0)), np.empty((0, 0, 0))
-_I1, _B1 = np.empty(0, np.int64), np.empty(0, np.bool_)
-_ARGS = {"p1": _F1, "p2": _F1, "c1": _F1, "s1": _F1, "aval": _F1, "d": _F1, "M2": _F2, "x": _F2, "E": _F3, "F": _F2,
-         "J": _F3, "S1": _F3, "S2": _F3, "S1f": _F3, "Q": _F3, "xn": _F2, "Fn": _F2, "Jn": _F3, "T1": _F3, "T2": _F3,
-         "T1f": _F3, "TQ": _F3, "dx": _F2, "res": _F1, "best": _F1, "stall": _I1, "halved": _I1, "idx": _I1,
-         "active": _B1, "acc": _B1}
-
-
-def _call(mode, ints=(), fv=(0.0, 0.0, 0.0), **arrays):
-    """:func:`newton_batch` with the integer vector ``(mode, *ints)`` (zeros after) and empty unused arrays."""
-    iv = np.zeros(11, np.int64)
-    iv[MODE] = mode
-    iv[1:1 + len(ints)] = ints
-    newton_batch(iv, np.array(fv, float), *(arrays.get(n, e) for n, e in _ARGS.items()))
-    return iv
-
-
-def _arr(a):
-    """``a`` as a writable, aligned, C-contiguous float64 array (copied only if needed): one argument type."""
-    return np.require(a, np.float64, "CWA")
-
-
-def _consts(d, M2):
-    return _arr(d), _arr(M2)
-
-
-def newton_jets(kind1, p1, kind2, p2, c1, s1, x0, E, have_E, d, M2, L, aj, aval, tol, max_iter, rcond, patience,
-                halvings):
-    """The whole batched Newton for two surfaces with compiled jets (:func:`spiralbevel._core.jets.surface_jet`).
-
-    Parameters
-    ----------
-    kind1, p1, kind2, p2 : int, (k,) float
-        Jets of pinion and gear.
-    c1, s1 : (M,) float
-        cos, sin of the effective pinion angles.
-    x0 : (M, 5) float
-    E : (M, 2, 3) float
-        Basis rows of the normal equations; filled from the gear normal at x0 unless ``have_E``.
-    d, M2, L :
-        Assembly constants (module docstring).
-    aj, aval : int, (M,) float
-        Anchor equation x_aj = aval (aj < 0: none).
-    tol, max_iter, rcond, patience, halvings :
-        See the module docstring.
-
-    Returns
-    -------
-    x (M, 5), F (M, k), J (M, k, 5), res (M,), S1, S2 (M, 3, 6), S1f (M, 3, 6), Q (M, 6, 6), iterations
-    """
-    M = x0.shape[0]
-    k = 6 if aj >= 0 else 5
-    it = Iteration(M, k, c1, s1, E, d, M2, L, aj, aval, tol, max_iter, rcond, patience, halvings)
-    it.x[:] = x0
-    a = it.arrays
-    S1, S2 = np.empty((M, 3, 6)), np.empty((M, 3, 6))
-    iv = _call(JETS, (kind1, kind2, bool(have_E), aj, max_iter, patience, halvings), it.fv, p1=_arr(p1),
-               p2=_arr(p2), S1=S1, S2=S2, T1=np.empty((M, 3, 6)), T2=np.empty((M, 3, 6)), **a)
-    return it.x, it.F, it.J, it.res, S1, S2, it.S1f, it.Q, int(iv[IT])
-
-
-class Iteration:
-    """The batched Newton as reverse communication, for surfaces that the caller evaluates (by numpy).
-
-    ``begin`` assembles the systems at the start and returns the number ``c`` of trial points ``xn[:c]`` (systems
-    ``idx[:c]``); the caller evaluates the surfaces there and hands them to ``advance``, which returns the next ``c``;
-    c = 0 when every system has converged, been given up or reached ``max_iter`` (:func:`newton_batch`).
-
-    Parameters
-    ----------
-    M, k : int
-        Number of systems, equations per system (6 with an anchor).
-    c1, s1, E, d, M2, L, aj, aval, tol, max_iter, rcond, patience, halvings :
-        As :func:`newton_jets`.
-
-    Attributes
-    ----------
-    x (M, 5), F (M, k), J (M, k, 5), res (M,), E (M, 2, 3), S1f (M, 3, 6), Q (M, 6, 6) : float
-        Iterates, their systems and residuals max|F| (inf: not finite), basis rows, fixed-frame data.
-    xn (M, 5) float, idx (M,) int
-        Trial points and their systems (the first ``c``).
-    accepted (M,) bool
-        Which of the last ``c`` trials were taken (the others are retried with the step halved).
-    iterations : int
-    """
-
-    def __init__(self, M, k, c1, s1, E, d, M2, L, aj, aval, tol, max_iter, rcond, patience, halvings):
-        d, M2 = _consts(d, M2)
-        self.fv = (float(L), float(tol), float(rcond))
-        self.ints = (0, 0, 0, int(aj), int(max_iter), int(patience), int(halvings))
-        c1, s1, aval, E = _arr(c1), _arr(s1), _arr(aval), _arr(E)
-        self.x, self.E = np.empty((M, 5)), E
-        self.F, self.J = np.empty((M, k)), np.empty((M, k, 5))
-        self.S1f, self.Q = np.empty((M, 3, 6)), np.empty((M, 6, 6))
-        self.res, self.accepted = np.empty(M), np.zeros(M, np.bool_)
-        self.xn, self.idx = np.empty((M, 5)), np.empty(M, np.int64)
-        self.arrays = dict(c1=c1, s1=s1, aval=aval, d=d, M2=M2, x=self.x, E=E, F=self.F, J=self.J, S1f=self.S1f,
-                           Q=self.Q, xn=self.xn, Fn=np.empty((M, k)), Jn=np.empty((M, k, 5)), T1f=np.empty((M, 3, 6)),
-                           TQ=np.empty((M, 6, 6)), dx=np.zeros((M, 5)), res=self.res, best=np.empty(M),
-                           stall=np.zeros(M, np.int64), halved=np.zeros(M, np.int64), idx=self.idx,
-                           active=np.zeros(M, np.bool_), acc=self.accepted)
-        self.iterations = 0
-        self._S = None
-
-    def _run(self, mode, ints, **arrays):
-        iv = _call(mode, ints, self.fv, **{**self.arrays, **arrays})
-        self.iterations = int(iv[IT])
-        self._iv = iv
-        return int(iv[C])
-
-    def begin(self, x0, S1=None, S2=None, have_E=False, F=None, J=None):
-        """Start from ``x0 (M, 5)`` with the member-frame surface data ``S1, S2 (M, 3, 6)`` there (the basis rows
-        ``E`` filled from the gear normal unless ``have_E``), or with the systems ``F, J`` given; returns c."""
-        self.x[:] = x0
-        ints = (0, 0, int(bool(have_E))) + self.ints[3:]
-        if S1 is None:
-            self.F[:], self.J[:] = F, J
-            return self._run(START, ints)
-        self._S = (S1, S2)
-        return self._run(BEGIN, ints, S1=S1, S2=S2)
-
-    def advance(self, T1=None, T2=None, Fn=None, Jn=None):
-        """Apply the member-frame surface data ``T1, T2 (c, 3, 6)`` at the trial points (the accepted ones are copied
-        into ``S1, S2`` of :meth:`begin`), or the systems ``Fn (c, k)``, ``Jn (c, k, 5)`` there; returns the next c."""
-        ints = (0, 0, 0) + self.ints[3:] + (int(self._iv[C]), self.iterations)
-        if T1 is None:
-            return self._run(ACCEPT, ints, Fn=_arr(Fn), Jn=_arr(Jn))
-        S1, S2 = self._S
-        return self._run(ADVANCE, ints, S1=S1, S2=S2, T1=T1, T2=T2)
-
-
-def step_batch(J, F, rcond):
-    """:func:`step` for every row of ``J (m, k, 5)``, ``F (m, k)``; returns ``dx (m, 5)``."""
-    J, F = _arr(J), _arr(F)
-    dx = np.empty((J.shape[0], 5))
-    _call(STEP, (), (0.0, 0.0, float(rcond)), J=J, F=F, dx=dx)
-    return dx
-
-
-def tangent_batch(J, S1f, E, L, rcond):
-    """Path tangent dx/dphi1 (m, 5) = -J^+ dF/dphi1 from ``J (m, k, 5)`` and the fixed-frame pinion data
-    ``S1f (m, 3, 6)``, basis rows ``E (m, 2, 3)`` (see :func:`newton_batch`)."""
-    J = _arr(J)
-    dx = np.empty((J.shape[0], 5))
-    _call(TANGENT, (), (float(L), 0.0, float(rcond)), J=J, S1f=_arr(S1f),
-          E=_arr(E), dx=dx)
-    return dx
-
-
-def singular_batch(J, tol):
-    """Whether s_min / s_max of the column-equilibrated ``J (m, k, 5)`` is below ``tol``, per system (line contact).
-
-    Certificates first, the Jacobi SVD only where they do not decide: with unit columns s_max >= 1 and, for the
-    triangular factor R of a QR decomposition, s_min <= min_j |R_jj|: singular when min_j |R_jj| < tol; regular when
-    |det| = prod_j |R_jj| > 5^2.5 tol (see :func:`step`). Non-finite systems are not singular."""
-    J = _arr(J)
-    out = np.zeros(J.shape[0], np.bool_)
-    _call(SINGULAR, (), (0.0, float(tol), 0.0), J=J, active=out)
-    return out

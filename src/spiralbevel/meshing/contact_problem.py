@@ -17,7 +17,7 @@ import numpy as np
 
 from .._core import tca as _k
 from .._core import tca_batch as _b
-from .._core import tca_newton as _n
+from .._core import tca_solve as _n
 from ..errors import DesignError, Problem
 from .contact_surface import surface_derivatives
 from .misalignment import Misalignment
