@@ -42,7 +42,7 @@ from .tca_step import all_finite, max_abs, singular_rows, step
 
 __all__ = ["assemble", "basis_rows", "step", "start", "propose", "accept", "newton_batch"]
 
-@kernel
+@kernel(inline="always")   # one call site: newton_batch
 def basis_rows(S2, c2, s2, M2, E):
     """Rows e_1, e_2 of ``E (2, 3)``: unit vectors orthogonal to the gear's fixed-frame normal and to each other."""
     nx = c2 * S2[0, 1] - s2 * S2[1, 1]

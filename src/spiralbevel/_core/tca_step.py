@@ -135,7 +135,9 @@ def _jacobi_svd(A):
     (mutually orthogonal) and ``V (5, 5)`` is returned, A_in = A_out V^T. Rotations until every pair of columns is
     orthogonal to 1e-15 relative (high relative accuracy; a few sweeps for 5 columns)."""
     k, n = A.shape
-    V = np.eye(n)
+    V = np.zeros((n, n))   # the identity by a loop: np.eye compiles numba's generic implementation (_core/jit.py)
+    for i in range(n):
+        V[i, i] = 1.0
     for _ in range(60):
         rotated = False
         for p in range(n - 1):
