@@ -253,3 +253,23 @@ def test_unknown_jet_kind_gives_nan_and_no_convergence(pair):
     x0 = _random_x(pair, np.random.default_rng(0), 4)
     x, conv, res, *_ = prob.newton(np.zeros(4), x0)
     assert not conv.any() and np.all(res == np.inf)
+
+
+def test_every_operation_shares_one_compiled_signature(pair):
+    # the TCA Newton's operations are values of one kernel's integer argument, not kernels of their own: after the
+    # jets' whole Newton, the numpy-evaluated iteration with an anchor row, the step, the tangent and the line test,
+    # the kernel holds one compiled signature (a second one would compile its whole call tree again: _core/jit.py)
+    from spiralbevel._core import tca_newton
+
+    kin = BevelPairKinematics(pair.shaft_angle, pair.z1, pair.z2)
+    rng = np.random.default_rng(11)
+    x0 = _random_x(pair, rng, 3, spread=0.005)
+    phi1 = np.zeros(3)
+    anchor = (0, x0[:, 0])
+    x, conv, res, J, data, it, E = ContactProblem(pair.pinion, pair.gear, kin, MIS).newton(phi1, x0, anchor=anchor)
+    xs, convs, *_ = ContactProblem(_NoJet(pair.pinion), _NoJet(pair.gear), kin, MIS).newton(phi1, x0, anchor=anchor)
+    np.testing.assert_array_equal(conv, convs)
+    N.step_batch(J, rng.standard_normal((3, 6)), 1e-10)
+    N.tangent_batch(J, data[2], E, 100.0, 1e-10)
+    B.is_singular(J[:, :5], 1e-7)
+    assert len(tca_newton.newton_batch.signatures) == 1

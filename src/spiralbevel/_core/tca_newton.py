@@ -216,7 +216,8 @@ def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q
     ``STEP``: ``dx`` = the step of every system ``J, F``. ``TANGENT``: ``dx`` = the path tangent dx/dphi1 =
     -J^+ dF/dphi1 from ``J`` and ``S1f`` (a1 = +z: a1 x v = (-v_y, v_x, 0); extra rows of J get dF/dphi1 = 0).
     ``SINGULAR``: ``active`` = whether s_min / s_max of the column-equilibrated J is below ``TOL``
-    (:func:`singular_batch`). Arrays a mode does not use may be empty.
+    (:func:`spiralbevel._core.tca_solve.singular_batch`). Arrays a mode does not use may be empty; so may the work
+    arrays of ``JETS`` (``xn`` to ``TQ``, ``dx``, ``best``, ``stall``, ``halved``, ``idx``, ``active``, ``acc``).
     """
     mode = iv[MODE]
     L, tol, rcond = fv[SCALE], fv[TOL], fv[RCOND]
@@ -243,8 +244,14 @@ def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q
     max_iter, patience, halvings = iv[MAX_ITER], iv[PATIENCE], iv[HALVINGS]
     first = mode == JETS or mode == BEGIN or mode == START
     assembled = mode != START and mode != ACCEPT
+    M, k = x.shape[0], F.shape[1]
+    if mode == JETS and xn.shape[0] < M:   # work arrays not given: allocated here (cheaper than from Python)
+        xn, Fn, Jn, dx = np.empty((M, 5)), np.empty((M, k)), np.empty((M, k, 5)), np.zeros((M, 5))
+        T1, T2, T1f, TQ = np.empty((M, 3, 6)), np.empty((M, 3, 6)), np.empty((M, 3, 6)), np.empty((M, 6, 6))
+        best, stall, halved = np.empty(M), np.zeros(M, np.int64), np.zeros(M, np.int64)
+        idx, active, acc = np.empty(M, np.int64), np.zeros(M, np.bool_), np.zeros(M, np.bool_)
     if first and assembled:
-        for i in range(x.shape[0]):
+        for i in range(M):
             if mode == JETS:
                 surface_jet(kind1, p1, x[i, 0], x[i, 1], S1[i])
                 surface_jet(kind2, p2, x[i, 2], x[i, 3], S2[i])
