@@ -170,9 +170,7 @@ def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, to
     return count
 
 
-
-
-
+# operations of newton_batch (iv[MODE])
 JETS, BEGIN, ADVANCE, START, ACCEPT, STEP, TANGENT, SINGULAR = range(8)
 # entries of its integer vector iv; ``C``, ``IT``, ``N_ACTIVE`` are written back
 MODE, KIND1, KIND2, HAVE_E, AJ, MAX_ITER, PATIENCE, HALVINGS, C, IT, N_ACTIVE = range(11)

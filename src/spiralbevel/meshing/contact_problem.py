@@ -210,7 +210,7 @@ class ContactProblem:
                 T1, T2 = self._stacked(run.xn[:c])
             c = run.advance(T1, T2)   # the accepted trials' data copied into S1, S2
         x, res = run.x, run.res
-        return x, res < tol, res, run.J, (S1, S2, run.S1f, run.Q), run.iterations, E
+        return x, res < tol, res, run.J, (S1, S2, run.S1f, run.Q), run.iterations, run.E
 
     def path_tangent(self, J, S1f, basis):
         """dx/dphi1 (m, 5) from the Jacobian and fixed-frame pinion data of :meth:`newton` (minimum norm on a
