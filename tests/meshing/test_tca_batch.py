@@ -1,6 +1,7 @@
-"""Compiled TCA kernels (spiralbevel._core.tca_newton, spiralbevel._core.logspiral_jet) against the reference
-numpy kernels of spiralbevel._core.tca, plain SVD, the closed forms of spiralbevel._core.logspiral and a plain
-per-point Newton; the give-up rule of the batched iteration; and the numba cache fallback."""
+"""Compiled TCA kernels (spiralbevel._core.tca_newton, called through tca_solve; spiralbevel._core.logspiral_jet)
+against the reference numpy kernels of spiralbevel._core.tca, plain SVD, the closed forms of
+spiralbevel._core.logspiral and a plain per-point Newton; the give-up rule of the batched iteration; and the numba
+cache fallback."""
 
 import numpy as np
 import pytest
@@ -8,7 +9,7 @@ import pytest
 from spiralbevel._core import logspiral as LS
 from spiralbevel._core import tca as K
 from spiralbevel._core import tca_batch as B
-from spiralbevel._core import tca_newton as N
+from spiralbevel._core import tca_solve as N
 from spiralbevel.meshing.contact_problem import ContactProblem
 from spiralbevel.meshing.kinematics import BevelPairKinematics
 from spiralbevel.meshing.misalignment import Misalignment
@@ -81,10 +82,11 @@ def test_compiled_assembly_matches_reference_kernel(pair, mis):
     S1, S2 = (np.ascontiguousarray(B.stack_state(*s)) for s in (st[:4], st[4:]))
     d, M2, L = prob._const
     E = np.empty((m, 2, 3))
-    N.basis_batch(S2, x, M2, E)
+    # assembly at x alone (no iteration: max_iter = 0), the basis rows from the gear normal
+    run = N.Iteration(m, 5, np.cos(phi1), np.sin(phi1), E, d, M2, L, -1, np.zeros(m), 0.0, 0, 1e-10, 0, 8)
+    assert run.begin(x, S1, S2) == 0
     np.testing.assert_allclose(E, np.stack([e1, e2], -2), atol=1e-14)
-    F, J, S1f, Q = np.empty((m, 5)), np.empty((m, 5, 5)), np.empty((m, 3, 6)), np.empty((m, 6, 6))
-    N.assemble_batch(S1, S2, np.cos(phi1), np.sin(phi1), x, d, M2, L, E, -1, np.zeros(m), F, J, S1f, Q)
+    F, J, S1f = run.F, run.J, run.S1f
     # rounding of products of ~100 mm terms: 1e-13 relative
     np.testing.assert_allclose(F, F_ref, atol=1e-11)
     np.testing.assert_allclose(J, J_ref, atol=1e-10)
@@ -146,16 +148,16 @@ def test_iteration_gives_up_on_systems_without_solution():
     x = np.array([np.full(5, 1.0), np.full(5, 0.5), np.full(5, 4.0)])
     m, tol, patience = 3, 1e-12, 3
     F, J = fun(x, np.arange(m))
-    res, best, stall, halved = np.empty(m), np.empty(m), np.zeros(m, np.int64), np.zeros(m, np.int64)
-    active, acc, dx, xn, idx = np.zeros(m, bool), np.zeros(m, bool), np.zeros((m, 5)), np.empty((m, 5)), \
-        np.empty(m, np.int64)
-    n_active, it, halvings_seen = N.start(F, J, tol, res, best, stall, halved, active), 0, 0
-    while it < 30 and n_active:
-        it += 1
-        c = N.propose(x, F, J, dx, halved, active, 1e-10, xn, idx)
-        Fn, Jn = fun(xn[:c], idx[:c])
-        n_active = N.accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience, 8, acc)
-        halvings_seen += int(np.sum(~acc[:c]))
+    # the systems are given, not assembled: the surface arguments are unused
+    run = N.Iteration(m, 5, np.zeros(m), np.zeros(m), np.zeros((m, 2, 3)), np.zeros(3), np.zeros((6, 3)), 1.0, -1,
+                      np.zeros(m), tol, 30, 1e-10, patience, 8)
+    c, halvings_seen = run.begin(x, F=F, J=J), 0
+    while c:
+        Fn, Jn = fun(run.xn[:c], run.idx[:c])
+        c_taken = c
+        c = run.advance(Fn=Fn, Jn=Jn)
+        halvings_seen += int(np.sum(~run.accepted[:c_taken]))
+    x, res, it = run.x, run.res, run.iterations
     conv = res < tol
     assert conv[0] and not conv[1] and conv[2]
     np.testing.assert_allclose(x[0], np.sqrt(2.0), rtol=1e-12)
@@ -251,3 +253,23 @@ def test_unknown_jet_kind_gives_nan_and_no_convergence(pair):
     x0 = _random_x(pair, np.random.default_rng(0), 4)
     x, conv, res, *_ = prob.newton(np.zeros(4), x0)
     assert not conv.any() and np.all(res == np.inf)
+
+
+def test_every_operation_shares_one_compiled_signature(pair):
+    # the TCA Newton's operations are values of one kernel's integer argument, not kernels of their own: after the
+    # jets' whole Newton, the numpy-evaluated iteration with an anchor row, the step, the tangent and the line test,
+    # the kernel holds one compiled signature (a second one would compile its whole call tree again: _core/jit.py)
+    from spiralbevel._core import tca_newton
+
+    kin = BevelPairKinematics(pair.shaft_angle, pair.z1, pair.z2)
+    rng = np.random.default_rng(11)
+    x0 = _random_x(pair, rng, 3, spread=0.005)
+    phi1 = np.zeros(3)
+    anchor = (0, x0[:, 0])
+    x, conv, res, J, data, it, E = ContactProblem(pair.pinion, pair.gear, kin, MIS).newton(phi1, x0, anchor=anchor)
+    xs, convs, *_ = ContactProblem(_NoJet(pair.pinion), _NoJet(pair.gear), kin, MIS).newton(phi1, x0, anchor=anchor)
+    np.testing.assert_array_equal(conv, convs)
+    N.step_batch(J, rng.standard_normal((3, 6)), 1e-10)
+    N.tangent_batch(J, data[2], E, 100.0, 1e-10)
+    B.is_singular(J[:, :5], 1e-7)
+    assert len(tca_newton.newton_batch.signatures) == 1

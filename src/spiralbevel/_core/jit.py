@@ -5,7 +5,7 @@ Compiled kernels are declared with :func:`kernel` instead of ``numba.njit``. Mac
 LTCA FE cache lives beside it), where ``key`` hashes the source of every module of ``spiralbevel._core``. numba's own
 cache (``cache=True`` alone, next to the source) is invalidated only by a change of the file that defines the
 compiled function, not by a change of the kernels it calls from other files: after an update of ``_core/jets.py``,
-``newton_jets`` of ``_core/tca_newton.py`` would load machine code that still dispatches to the old jets (found as
+the TCA Newton of ``_core/tca_newton.py`` would load machine code that still dispatches to the old jets (found as
 NaN residuals, "no contact", after a merge). Keying the directory by all sources makes every change a fresh cache.
 Where the directory cannot be written, the kernel is compiled in memory on first use instead of failing: the result
 is the same, only the first call of each process pays the compile time.
@@ -57,11 +57,27 @@ rules for kernels:
   kernels' compiles only, through a pipeline class that sets ``numba.config.OPT`` around them: about 10 % less LLVM
   time, 5 % less compile time) made the face-milled TCA about 10 % slower (three paired runs of
   ``bench/bench_tca.py``); level 0 halves LLVM time and makes TCA and generation 4-5x slower: left at numba's default.
-* Where the cold time goes (the CMC example, empty cache, one process): numba's type inference and lowering are
-  nearly all of the compile; LLVM is about 40 % of it, half optimising and half emitting code. After the rule on
-  levels above, what LLVM optimises more than once is mostly the shared callees of the TCA Newton (``tca_newton.step``
-  in 7 modules, its 5 x 5 solve and SVD in 8-9) and the jet below the top-level kernels that each use it: fewer
-  top-level kernels over the same callees is the lever left. A second
+* One entry point per family of kernels. Every compiled function is a compile of its own (about 50 ms of CPU for a
+  trivial one: numba's pipeline, wrappers, cache files; at load 9) and an LLVM module that links its callees. The
+  TCA Newton had nine kernels called from Python (the jets' whole Newton; start, propose, accept, assembly and basis
+  of the numpy-evaluated iteration; step, path tangent and line-contact test of a batch), each linking the step with
+  its LU and SVD. They are one kernel, ``tca_newton.newton_batch``, whose operation is a value read from its integer
+  array (one signature), and the helpers that then have one call site are inlined: the CMC example's cold run
+  compiles 82 functions instead of 102, and LLVM optimises 114,408 IR instructions in 87 modules instead of 133,521
+  in 107 (``bench_compile.py --ir``); about 4-5 s less compile CPU (alternated at load 8-10). The price: a call from
+  Python types 32 arguments, about 3 us more per call than the separate kernels.
+* Where the cold time goes (the CMC example, empty cache, one process): numba's type inference and lowering are about
+  60 % of the compile, LLVM the rest, half optimising and half emitting code. LLVM still optimises more than once the
+  face-milled jet ``blade_jet_u`` (in 22 modules: the settings fit's, multi-point control's, blade locator's and edge
+  contact's entry points and their callees), the TCA step below the four edge-contact kernels (``tca_edge``,
+  ``tca_edge_screen``) and ``linalg.lu_solve`` below multi-point control's entry points; one entry point per family
+  would cut those too. It cannot bring the cold run to 15 s: with no duplicate at all LLVM would optimise the 45,521
+  distinct instructions, 40 % of today's (about 7 s less), while numba's front end alone (about 17 s CPU at load
+  8-10) and the job's work besides compiling (about 12 s there, 10 s idle: FE compliance and the job itself) each
+  come near the target or exceed it. numba caches machine code only, not typed IR, so there is no cheaper middle
+  state to keep. The ways around are not JIT: compiling ahead of time (``numba.pycc``, pending deprecation since
+  numba 0.57; one extension module per platform built at install, generic code for the CPU family) or shipping a
+  filled cache (keyed by the CPU and the source files' time stamps); neither is done. A second
   process compiling the kernels into the same cache while the job runs was measured and not kept: on this 2-core
   machine it made the cold run slower in wall time at every load measured (43 -> 58 s at load 1.1).
 * Give each kernel one argument signature: a read-only broadcast view and a writable array are two numba types, and

@@ -57,14 +57,14 @@ def lu_solve(J, b, dx):
     return True
 
 
-@kernel
+@kernel(inline="always")   # a loop: cheaper typed at each call site than compiled alone
 def copy1(dst, src):
     """dst[:] = src for (n,) arrays of the same length (a loop: see the module docstring)."""
     for i in range(dst.shape[0]):
         dst[i] = src[i]
 
 
-@kernel
+@kernel(inline="always")   # a loop: cheaper typed at each call site than compiled alone
 def copy2(dst, src):
     """dst[:, :] = src for (n, k) arrays of the same shape (a loop: see the module docstring)."""
     for i in range(dst.shape[0]):

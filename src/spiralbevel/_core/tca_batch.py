@@ -50,10 +50,10 @@ def is_singular(J, tol):
     Certificates first, an SVD only where they do not decide: with unit columns s_max >= 1 and, for the triangular
     factor R of a QR decomposition, s_min <= min_k |R_kk| (an eigenvalue of R bounds s_min from above): singular
     when min_k |R_kk| < tol; regular when |det| = prod_k |R_kk| > 5^2.5 tol
-    (see :func:`spiralbevel._core.tca_newton.step`). Compiled: :func:`spiralbevel._core.tca_newton.singular_batch`.
+    (see :func:`spiralbevel._core.tca_step.step`). Compiled: :func:`spiralbevel._core.tca_solve.singular_batch`.
     Non-finite systems are not singular.
     """
-    from . import tca_newton  # numba stays off the import path of the modules that only need the numpy helpers
+    from . import tca_solve  # numba stays off the import path of the modules that only need the numpy helpers
 
     J = np.ascontiguousarray(J, float)
-    return tca_newton.singular_batch(J.reshape((-1,) + J.shape[-2:]), float(tol)).reshape(J.shape[:-2])
+    return tca_solve.singular_batch(J.reshape((-1,) + J.shape[-2:]), float(tol)).reshape(J.shape[:-2])

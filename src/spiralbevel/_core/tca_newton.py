@@ -1,26 +1,29 @@
-"""Compiled batched Newton of tooth contact analysis: system assembly, the 5 x 5 step, the give-up rule.
+"""Compiled batched Newton of tooth contact analysis: system assembly and the batched iteration with its give-up rule.
 
 Same equations and unknowns as :mod:`spiralbevel._core.tca` (seed 001 Eq. (16), docs/theory/tca.md, Eq. (T5)):
 x = (q1, q2, phi2), F in mm, surface data stacked per system as ``S (3, 6)`` with the columns (r, n, r_q0, r_q1,
-n_q0, n_q1) in the member frame (:func:`spiralbevel._core.tca_batch.stack_state`). Every function here is compiled
-(:mod:`spiralbevel._core.jit`) and is the only implementation of its rule:
+n_q0, n_q1) in the member frame (:func:`spiralbevel._core.tca_batch.stack_state`). Every rule here is compiled
+(:mod:`spiralbevel._core.jit`) and has one implementation:
 
 * :func:`assemble` -- F (k,) and J (k, 5) of one system (k = 6 with an anchor equation x_j = value);
-* :func:`step` -- the Newton step dx = -J^+ F: column equilibration; LU with partial pivoting where
-  |det| > 5^2.5 rcond proves s_min / s_max > rcond (then the pseudo-inverse is the inverse), else the minimum-norm
-  SVD step (line contact, anchored systems; one-sided Jacobi SVD, which compiles in a fraction of the time of
-  numba's LAPACK binding); NaN for a non-finite system;
-* :func:`start`, :func:`propose`, :func:`accept` -- the batched iteration as reverse communication: ``propose``
-  gives the trial points of the active systems, the caller evaluates the surfaces there and assembles, ``accept``
-  applies the rules: a trial that leaves the surfaces (non-finite F or J) is retried with the step halved, up to
-  ``halvings`` times; a system whose residual has not halved its best value for ``patience`` consecutive iterations
-  is given up (Newton cycling or wandering: no solution near the start); converged when max|F| < tol.
-* :func:`newton_jets` -- the whole iteration in compiled code for surfaces with compiled jets
-  (:mod:`spiralbevel._core.jets`). Surfaces without one run the same ``propose``/``accept`` from Python
-  (:meth:`spiralbevel.meshing.contact_problem.ContactProblem.newton`), with numpy evaluating the surfaces.
+* the Newton step :func:`spiralbevel._core.tca_step.step` (LU where a determinant bound proves the system regular,
+  else the minimum-norm SVD step);
+* the batched iteration (:func:`start`, :func:`propose`, :func:`accept`): ``propose`` gives the trial points of the
+  active systems, the surfaces are evaluated there and the systems assembled, ``accept`` applies the rules: a trial
+  that leaves the surfaces (non-finite F or J) is retried with the step halved, up to ``halvings`` times; a system
+  whose residual has not halved its best value for ``patience`` consecutive iterations is given up (Newton cycling
+  or wandering: no solution near the start); converged when max|F| < tol.
 
 Systems are independent: the batched iteration equals a per-system one, and ``iterations`` is the largest number of
 iterations any system took.
+
+Python reaches all of it through one kernel, :func:`newton_batch`, with one argument signature: the operation is a
+value read from an integer array (``iv[MODE]``), not a kernel of its own. numba links the IR of every callee into the
+module of each compiled function that reaches it, and LLVM optimises it again there: one entry point instead of nine
+optimises ``step`` (with its LU and SVD) and ``assemble`` once here, not once per entry point, and compiles one
+function instead of nine (``_core/jit.py``; ``bench/bench_compile.py --ir``). :mod:`spiralbevel._core.tca_solve`
+allocates the arrays and calls it (the whole iteration for surfaces with compiled jets, reverse communication for
+surfaces evaluated by numpy, the step, the path tangent and the line-contact test of a batch).
 
 Constants of an assembly (:func:`spiralbevel._core.tca_batch.assembly_constants`): d = o1 - o2 (3,) mm,
 M2 = [B2; [a2]x B2] (6, 3), L mm the length scale of the normal equations.
@@ -35,28 +38,11 @@ import numpy as np
 from .jets import surface_jet
 from .jit import kernel
 from .linalg import copy1, copy2
+from .tca_step import all_finite, max_abs, singular_rows, step
 
-__all__ = [
-    "assemble",
-    "assemble_batch",
-    "basis_rows",
-    "basis_batch",
-    "step",
-    "step_batch",
-    "tangent_batch",
-    "start",
-    "propose",
-    "accept",
-    "newton_jets",
-    "singular_batch",
-]
+__all__ = ["assemble", "basis_rows", "step", "start", "propose", "accept", "newton_batch"]
 
-#: |det| of a matrix with unit columns bounds its singular values: s_min / s_max >= |det| / s_max^5 and
-#: s_max <= sqrt(5) (Frobenius), so |det| > 5^2.5 * rcond guarantees s_min / s_max > rcond.
-_DET_BOUND = 5.0 ** 2.5
-
-
-@kernel
+@kernel(inline="always")   # one call site: newton_batch
 def basis_rows(S2, c2, s2, M2, E):
     """Rows e_1, e_2 of ``E (2, 3)``: unit vectors orthogonal to the gear's fixed-frame normal and to each other."""
     nx = c2 * S2[0, 1] - s2 * S2[1, 1]
@@ -78,11 +64,6 @@ def basis_rows(S2, c2, s2, M2, E):
     E[1, 2] = n0 * a1 - n1 * a0
 
 
-@kernel
-def basis_batch(S2, x, M2, E):
-    """:func:`basis_rows` for every row of ``S2 (m, 3, 6)`` at the gear angles ``x[:, 4]`` into ``E (m, 2, 3)``."""
-    for i in range(x.shape[0]):
-        basis_rows(S2[i], math.cos(x[i, 4]), math.sin(x[i, 4]), M2, E[i])
 
 
 @kernel
@@ -125,199 +106,16 @@ def assemble(S1, S2, c1, s1, x, d, M2, L, E, aj, aval, F, J, S1f, Q):
         J[5, aj] = L
 
 
-@kernel
-def assemble_batch(S1, S2, c1, s1, x, d, M2, L, E, aj, aval, F, J, S1f, Q):
-    """:func:`assemble` for every row: ``S1, S2 (m, 3, 6)``, ``c1, s1 (m,)``, ``x (m, 5)``, ``E (m, 2, 3)``,
-    ``aval (m,)``; outputs ``F (m, k)``, ``J (m, k, 5)``, ``S1f (m, 3, 6)``, ``Q (m, 6, 6)``."""
-    for i in range(x.shape[0]):
-        assemble(S1[i], S2[i], c1[i], s1[i], x[i], d, M2, L, E[i], aj, aval[i], F[i], J[i], S1f[i], Q[i])
 
 
-@kernel
-def _all_finite(a):
-    for v in a.flat:
-        if not math.isfinite(v):
-            return False
-    return True
 
-
-@kernel
-def _lu_solve5(A, b, rcond, dx):
-    """Solve A dx = b (5 x 5, unit columns) by LU with partial pivoting if |det A| > 5^2.5 rcond; False otherwise."""
-    n = 5
-    U = A.copy()
-    y = b.copy()
-    det = 1.0
-    for k in range(n):
-        p = k
-        big = abs(U[k, k])
-        for i in range(k + 1, n):
-            if abs(U[i, k]) > big:
-                big = abs(U[i, k])
-                p = i
-        if p != k:
-            det = -det
-            for j in range(n):
-                U[k, j], U[p, j] = U[p, j], U[k, j]
-            y[k], y[p] = y[p], y[k]
-        piv = U[k, k]
-        det *= piv
-        if piv == 0.0:
-            return False
-        for i in range(k + 1, n):
-            f = U[i, k] / piv
-            U[i, k] = f
-            for j in range(k + 1, n):
-                U[i, j] -= f * U[k, j]
-            y[i] -= f * y[k]
-    if not abs(det) > _DET_BOUND * rcond:
-        return False
-    for k in range(n - 1, -1, -1):
-        acc = y[k]
-        for j in range(k + 1, n):
-            acc -= U[k, j] * dx[j]
-        dx[k] = acc / U[k, k]
-    return True
-
-
-@kernel
-def _equilibrate(J):
-    k, n = J.shape
-    cn = np.empty(n)
-    Js = np.empty((k, n))
-    for j in range(n):
-        acc = 0.0
-        for i in range(k):
-            acc += J[i, j] * J[i, j]
-        c = math.sqrt(acc)
-        cn[j] = c if c > 0 else 1.0
-        for i in range(k):
-            Js[i, j] = J[i, j] / cn[j]
-    return Js, cn
-
-
-@kernel
-def step(J, F, rcond, dx):
-    """Newton step ``dx (5,)`` = -J^+ F of one system ``J (k, 5)``, ``F (k,)`` (see the module docstring)."""
-    k = J.shape[0]
-    if not (_all_finite(J) and _all_finite(F)):
-        dx[:] = math.nan
-        return
-    Js, cn = _equilibrate(J)
-    if k == 5:
-        b = np.empty(5)
-        for i in range(5):
-            b[i] = -F[i]
-        if _lu_solve5(Js, b, rcond, dx):
-            for j in range(5):
-                dx[j] /= cn[j]
-            return
-    # minimum-norm least-squares step with singular values below rcond s_max discarded (contact line)
-    A, cn2 = _equilibrate(Js)
-    V = _jacobi_svd(A)
-    smax = 0.0
-    sv = np.empty(5)
-    for a in range(5):
-        acc = 0.0
-        for i in range(k):
-            acc += A[i, a] * A[i, a]
-        sv[a] = math.sqrt(acc)
-        smax = max(smax, sv[a])
-    y = np.zeros(5)
-    for a in range(5):
-        if sv[a] > rcond * smax:
-            acc = 0.0
-            for i in range(k):
-                acc -= A[i, a] * F[i]
-            y[a] = acc / (sv[a] * sv[a])  # column a of A is s_a u_a
-    for j in range(5):
-        acc = 0.0
-        for a in range(5):
-            acc += V[j, a] * y[a]
-        dx[j] = acc / cn2[j] / cn[j]
-
-
-@kernel
-def _jacobi_svd(A):
-    """One-sided Jacobi SVD (Hestenes) of ``A (k, 5)``, k >= 5, in place: on return the columns of A are s_a u_a
-    (mutually orthogonal) and ``V (5, 5)`` is returned, A_in = A_out V^T. Rotations until every pair of columns is
-    orthogonal to 1e-15 relative (high relative accuracy; a few sweeps for 5 columns)."""
-    k, n = A.shape
-    V = np.eye(n)
-    for _ in range(60):
-        rotated = False
-        for p in range(n - 1):
-            for q in range(p + 1, n):
-                alpha = 0.0
-                beta = 0.0
-                gamma = 0.0
-                for i in range(k):
-                    alpha += A[i, p] * A[i, p]
-                    beta += A[i, q] * A[i, q]
-                    gamma += A[i, p] * A[i, q]
-                if gamma == 0.0 or abs(gamma) <= 1e-15 * math.sqrt(alpha * beta):
-                    continue
-                rotated = True
-                zeta = (beta - alpha) / (2.0 * gamma)
-                t = (1.0 if zeta >= 0 else -1.0) / (abs(zeta) + math.sqrt(1.0 + zeta * zeta))
-                c = 1.0 / math.sqrt(1.0 + t * t)
-                s = c * t
-                for i in range(k):
-                    up, uq = A[i, p], A[i, q]
-                    A[i, p] = c * up - s * uq
-                    A[i, q] = s * up + c * uq
-                for i in range(n):
-                    vp, vq = V[i, p], V[i, q]
-                    V[i, p] = c * vp - s * vq
-                    V[i, q] = s * vp + c * vq
-        if not rotated:
-            break
-    return V
-
-
-@kernel
-def step_batch(J, F, rcond):
-    """:func:`step` for every row of ``J (m, k, 5)``, ``F (m, k)``; returns ``dx (m, 5)``."""
-    out = np.empty((J.shape[0], 5))
-    for i in range(J.shape[0]):
-        step(J[i], F[i], rcond, out[i])
-    return out
-
-
-@kernel
-def tangent_batch(J, S1f, E, L, rcond):
-    """Path tangent dx/dphi1 (m, 5) = -J^+ dF/dphi1 from ``J (m, k, 5)`` and the fixed-frame pinion data
-    ``S1f (m, 3, 6)`` (a1 = +z: a1 x v = (-v_y, v_x, 0); extra rows of J get dF/dphi1 = 0)."""
-    m, k = J.shape[0], J.shape[1]
-    out = np.empty((m, 5))
-    Fp = np.zeros(k)
-    for i in range(m):
-        Fp[0] = -S1f[i, 1, 0]
-        Fp[1] = S1f[i, 0, 0]
-        Fp[2] = 0.0
-        nx, ny = -S1f[i, 1, 1], S1f[i, 0, 1]
-        for a in range(2):
-            Fp[3 + a] = L * (E[i, a, 0] * nx + E[i, a, 1] * ny)
-        step(J[i], Fp, rcond, out[i])
-    return out
-
-
-@kernel
-def _max_abs(a):
-    m = 0.0
-    for v in a:
-        if abs(v) > m:
-            m = abs(v)
-    return m
-
-
-@kernel
+@kernel(inline="always")   # one call site: newton_batch
 def start(F, J, tol, res, best, stall, halved, active):
     """Initial bookkeeping from the first evaluation ``F (M, k)``, ``J (M, k, 5)``; returns the number active."""
     count = 0
     for i in range(F.shape[0]):
-        ok = _all_finite(F[i]) and _all_finite(J[i])
-        res[i] = _max_abs(F[i]) if ok else math.inf
+        ok = all_finite(F[i]) and all_finite(J[i])
+        res[i] = max_abs(F[i]) if ok else math.inf
         best[i] = res[i]
         stall[i] = 0
         halved[i] = 0
@@ -326,7 +124,7 @@ def start(F, J, tol, res, best, stall, halved, active):
     return count
 
 
-@kernel
+@kernel(inline="always")   # one call site: newton_batch
 def propose(x, F, J, dx, halved, active, rcond, xn, idx):
     """Trial points ``xn[:c]`` of the ``c`` active systems ``idx[:c]`` (fresh Newton step, or the halved previous
     one after a trial that left the surfaces); returns c."""
@@ -342,13 +140,13 @@ def propose(x, F, J, dx, halved, active, rcond, xn, idx):
     return c
 
 
-@kernel
+@kernel(inline="always")   # one call site: newton_batch
 def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience, halvings, acc):
     """Apply the trial evaluations ``Fn[:c]``, ``Jn[:c]`` (see the module docstring); ``acc[:c]`` tells which trials
     were taken (their surface data should be kept by the caller); returns the number still active."""
     for t in range(c):
         i = idx[t]
-        fin = _all_finite(Fn[t]) and _all_finite(Jn[t])
+        fin = all_finite(Fn[t]) and all_finite(Jn[t])
         if not fin and halved[i] < halvings:
             for j in range(5):
                 dx[i, j] *= 0.5
@@ -360,7 +158,7 @@ def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, to
         copy1(F[i], Fn[t])
         copy2(J[i], Jn[t])
         halved[i] = 0
-        r = _max_abs(Fn[t]) if fin else math.inf
+        r = max_abs(Fn[t]) if fin else math.inf
         res[i] = r
         better = r < 0.5 * best[i]
         best[i] = min(best[i], r)
@@ -372,141 +170,124 @@ def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, to
     return count
 
 
+# operations of newton_batch (iv[MODE])
+JETS, BEGIN, ADVANCE, START, ACCEPT, STEP, TANGENT, SINGULAR = range(8)
+# entries of its integer vector iv; ``C``, ``IT``, ``N_ACTIVE`` are written back
+MODE, KIND1, KIND2, HAVE_E, AJ, MAX_ITER, PATIENCE, HALVINGS, C, IT, N_ACTIVE = range(11)
+# entries of its float vector fv
+SCALE, TOL, RCOND = range(3)
+
+
 @kernel
-def newton_jets(kind1, p1, kind2, p2, c1, s1, x0, E, have_E, d, M2, L, aj, aval, tol, max_iter, rcond, patience,
-                halvings):
-    """The whole batched Newton for two surfaces with compiled jets (:func:`spiralbevel._core.jets.surface_jet`).
+def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q, xn, Fn, Jn, T1, T2, T1f, TQ, dx, res,
+                 best, stall, halved, idx, active, acc):
+    """Every batched operation of this module, chosen by ``iv[MODE]`` (one kernel, one argument signature).
 
     Parameters
     ----------
-    kind1, p1, kind2, p2 : int, (k,) float
-        Jets of pinion and gear.
-    c1, s1 : (M,) float
-        cos, sin of the effective pinion angles.
-    x0 : (M, 5) float
-    E : (M, 2, 3) float
-        Basis rows of the normal equations; filled from the gear normal at x0 unless ``have_E``.
-    d, M2, L :
+    iv : (11,) int64
+        ``MODE``; the jets ``KIND1``, ``KIND2`` of pinion and gear (:mod:`spiralbevel._core.jets`); ``HAVE_E`` (0: fill
+        the basis rows ``E`` from the gear normal at x); the anchor row ``AJ`` (< 0: none); ``MAX_ITER``,
+        ``PATIENCE``, ``HALVINGS`` (module docstring); written back: ``C`` the number of trial points ``xn[:C]``
+        (systems ``idx[:C]``) to evaluate, ``IT`` the iterations so far, ``N_ACTIVE`` the systems still iterating.
+    fv : (3,) float
+        ``SCALE`` L (mm), ``TOL`` (mm on max|F|; the s_min / s_max threshold for ``SINGULAR``), ``RCOND``.
+    p1, p2 : (k,) float
+        Jet parameters of pinion and gear (``JETS``).
+    c1, s1, aval : (M,) float
+        cos, sin of the effective pinion angles; anchor values.
+    d, M2 :
         Assembly constants (module docstring).
-    aj, aval : int, (M,) float
-        Anchor equation x_aj = aval (aj < 0: none).
-    tol, max_iter, rcond, patience, halvings :
-        See the module docstring.
+    x (M, 5), E (M, 2, 3), F (M, k), J (M, k, 5), S1, S2, S1f (M, 3, 6), Q (M, 6, 6) : float
+        Iterates, basis rows, systems and surface data at the iterates (member frame; S1f, Q fixed frame).
+    xn (M, 5), Fn (M, k), Jn (M, k, 5), T1, T2, T1f (M, 3, 6), TQ (M, 6, 6) : float
+        The same at the trial points.
+    dx (M, 5), res, best (M,) float; stall, halved, idx (M,) int64; active, acc (M,) bool
+        Steps and the bookkeeping of the iteration.
 
-    Returns
-    -------
-    x (M, 5), F (M, k), J (M, k, 5), res (M,), S1, S2 (M, 3, 6), S1f (M, 3, 6), Q (M, 6, 6), iterations
+    Notes
+    -----
+    ``JETS``: the whole iteration from x, the surfaces evaluated by their compiled jets. ``BEGIN``: assembly at x
+    from the member-frame data ``S1, S2`` evaluated by the caller, then the first trial points. ``ADVANCE``: assembly
+    at the trial points from ``T1, T2`` evaluated by the caller, the rules, the next trial points. ``START`` and
+    ``ACCEPT``: as ``BEGIN`` and ``ADVANCE`` with the systems ``F, J`` (``Fn, Jn``) given instead of assembled.
+    ``STEP``: ``dx`` = the step of every system ``J, F``. ``TANGENT``: ``dx`` = the path tangent dx/dphi1 =
+    -J^+ dF/dphi1 from ``J`` and ``S1f`` (a1 = +z: a1 x v = (-v_y, v_x, 0); extra rows of J get dF/dphi1 = 0).
+    ``SINGULAR``: ``active`` = whether s_min / s_max of the column-equilibrated J is below ``TOL``
+    (:func:`spiralbevel._core.tca_solve.singular_batch`). Arrays a mode does not use may be empty; so may the work
+    arrays of ``JETS`` (``xn`` to ``TQ``, ``dx``, ``best``, ``stall``, ``halved``, ``idx``, ``active``, ``acc``).
     """
-    M = x0.shape[0]
-    k = 6 if aj >= 0 else 5
-    x = x0.copy()
-    F = np.empty((M, k))
-    J = np.empty((M, k, 5))
-    S1 = np.empty((M, 3, 6))
-    S2 = np.empty((M, 3, 6))
-    S1f = np.empty((M, 3, 6))
-    Q = np.empty((M, 6, 6))
-    for i in range(M):
-        surface_jet(kind1, p1, x[i, 0], x[i, 1], S1[i])
-        surface_jet(kind2, p2, x[i, 2], x[i, 3], S2[i])
-        if not have_E:
-            basis_rows(S2[i], math.cos(x[i, 4]), math.sin(x[i, 4]), M2, E[i])
-        assemble(S1[i], S2[i], c1[i], s1[i], x[i], d, M2, L, E[i], aj, aval[i], F[i], J[i], S1f[i], Q[i])
-    res = np.empty(M)
-    best = np.empty(M)
-    stall = np.zeros(M, np.int64)
-    halved = np.zeros(M, np.int64)
-    active = np.zeros(M, np.bool_)
-    dx = np.zeros((M, 5))
-    xn = np.empty((M, 5))
-    idx = np.empty(M, np.int64)
-    acc = np.empty(M, np.bool_)
-    Fn = np.empty((M, k))
-    Jn = np.empty((M, k, 5))
-    T1 = np.empty((M, 3, 6))
-    T2 = np.empty((M, 3, 6))
-    T1f = np.empty((M, 3, 6))
-    TQ = np.empty((M, 6, 6))
-    n_active = start(F, J, tol, res, best, stall, halved, active)
-    it = 0
-    while it < max_iter and n_active > 0:
-        it += 1
-        c = propose(x, F, J, dx, halved, active, rcond, xn, idx)
-        for t in range(c):
-            i = idx[t]
-            surface_jet(kind1, p1, xn[t, 0], xn[t, 1], T1[t])
-            surface_jet(kind2, p2, xn[t, 2], xn[t, 3], T2[t])
-            assemble(T1[t], T2[t], c1[i], s1[i], xn[t], d, M2, L, E[i], aj, aval[i], Fn[t], Jn[t], T1f[t], TQ[t])
-        n_active = accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience,
-                          halvings, acc)
-        for t in range(c):
-            if acc[t]:
+    mode = iv[MODE]
+    L, tol, rcond = fv[SCALE], fv[TOL], fv[RCOND]
+    if mode == STEP:
+        for i in range(J.shape[0]):
+            step(J[i], F[i], rcond, dx[i])
+        return
+    if mode == TANGENT:
+        k = J.shape[1]
+        Fp = np.zeros(k)
+        for i in range(J.shape[0]):
+            Fp[0] = -S1f[i, 1, 0]
+            Fp[1] = S1f[i, 0, 0]
+            Fp[2] = 0.0
+            nx, ny = -S1f[i, 1, 1], S1f[i, 0, 1]
+            for a in range(2):
+                Fp[3 + a] = L * (E[i, a, 0] * nx + E[i, a, 1] * ny)
+            step(J[i], Fp, rcond, dx[i])
+        return
+    if mode == SINGULAR:
+        singular_rows(J, tol, active)
+        return
+    kind1, kind2, aj = iv[KIND1], iv[KIND2], iv[AJ]
+    max_iter, patience, halvings = iv[MAX_ITER], iv[PATIENCE], iv[HALVINGS]
+    first = mode == JETS or mode == BEGIN or mode == START
+    assembled = mode != START and mode != ACCEPT
+    M, k = x.shape[0], F.shape[1]
+    if mode == JETS and xn.shape[0] < M:   # work arrays not given: allocated here (cheaper than from Python)
+        xn, Fn, Jn, dx = np.empty((M, 5)), np.empty((M, k)), np.empty((M, k, 5)), np.zeros((M, 5))
+        T1, T2, T1f, TQ = np.empty((M, 3, 6)), np.empty((M, 3, 6)), np.empty((M, 3, 6)), np.empty((M, 6, 6))
+        best, stall, halved = np.empty(M), np.zeros(M, np.int64), np.zeros(M, np.int64)
+        idx, active, acc = np.empty(M, np.int64), np.zeros(M, np.bool_), np.zeros(M, np.bool_)
+    if first and assembled:
+        for i in range(M):
+            if mode == JETS:
+                surface_jet(kind1, p1, x[i, 0], x[i, 1], S1[i])
+                surface_jet(kind2, p2, x[i, 2], x[i, 3], S2[i])
+            if iv[HAVE_E] == 0:
+                basis_rows(S2[i], math.cos(x[i, 4]), math.sin(x[i, 4]), M2, E[i])
+            assemble(S1[i], S2[i], c1[i], s1[i], x[i], d, M2, L, E[i], aj, aval[i], F[i], J[i], S1f[i], Q[i])
+    it, c, n_active = 0, 0, 0
+    if first:
+        n_active = start(F, J, tol, res, best, stall, halved, active)
+    else:
+        it, c = iv[IT], iv[C]
+    pending = not first   # trial points evaluated, to be applied
+    while True:
+        if pending:
+            for t in range(c):
                 i = idx[t]
-                copy2(S1[i], T1[t])   # copies by loops, not S1[i] = T1[t]: compile time (_core/jit.py)
-                copy2(S2[i], T2[t])
-                copy2(S1f[i], T1f[t])
-                copy2(Q[i], TQ[t])
-    return x, F, J, res, S1, S2, S1f, Q, it
+                if mode == JETS:
+                    surface_jet(kind1, p1, xn[t, 0], xn[t, 1], T1[t])
+                    surface_jet(kind2, p2, xn[t, 2], xn[t, 3], T2[t])
+                if assembled:
+                    assemble(T1[t], T2[t], c1[i], s1[i], xn[t], d, M2, L, E[i], aj, aval[i], Fn[t], Jn[t], T1f[t],
+                             TQ[t])
+            n_active = accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience,
+                              halvings, acc)
+            if assembled:
+                for t in range(c):
+                    if acc[t]:
+                        i = idx[t]
+                        copy2(S1[i], T1[t])   # copies by loops, not S1[i] = T1[t]: compile time (_core/jit.py)
+                        copy2(S2[i], T2[t])
+                        copy2(S1f[i], T1f[t])
+                        copy2(Q[i], TQ[t])
+        c = 0
+        if it < max_iter and n_active > 0:
+            it += 1
+            c = propose(x, F, J, dx, halved, active, rcond, xn, idx)
+        if mode != JETS or c == 0:
+            break
+        pending = True
+    iv[C], iv[IT], iv[N_ACTIVE] = c, it, n_active
 
-
-@kernel
-def _qr_diag(A, d):
-    """|R_kk| (k = 0..4) of a Householder QR of ``A (k, 5)`` (overwritten) into ``d (5,)``."""
-    k, n = A.shape
-    for j in range(n):
-        nrm = 0.0
-        for i in range(j, k):
-            nrm += A[i, j] * A[i, j]
-        nrm = math.sqrt(nrm)
-        d[j] = nrm
-        if nrm == 0.0:
-            continue
-        alpha = -nrm if A[j, j] >= 0 else nrm
-        A[j, j] -= alpha  # v = a - alpha e_j, stored in column j
-        vv = 0.0
-        for i in range(j, k):
-            vv += A[i, j] * A[i, j]
-        if vv == 0.0:
-            continue
-        for c in range(j + 1, n):
-            dot = 0.0
-            for i in range(j, k):
-                dot += A[i, j] * A[i, c]
-            f = 2.0 * dot / vv
-            for i in range(j, k):
-                A[i, c] -= f * A[i, j]
-
-
-@kernel
-def singular_batch(J, tol):
-    """Whether s_min / s_max of the column-equilibrated ``J (m, k, 5)`` is below ``tol``, per system (line contact).
-
-    Certificates first, the Jacobi SVD only where they do not decide: with unit columns s_max >= 1 and, for the
-    triangular factor R of a QR decomposition, s_min <= min_j |R_jj|: singular when min_j |R_jj| < tol; regular when
-    |det| = prod_j |R_jj| > 5^2.5 tol (see :func:`step`). Non-finite systems are not singular."""
-    m = J.shape[0]
-    out = np.zeros(m, np.bool_)
-    d = np.empty(5)
-    for i in range(m):
-        if not _all_finite(J[i]):
-            continue
-        A, _ = _equilibrate(J[i])
-        B = A.copy()
-        _qr_diag(B, d)
-        dmin, prod = d[0], 1.0
-        for j in range(5):
-            dmin = min(dmin, d[j])
-            prod *= d[j]
-        if dmin < tol:
-            out[i] = True
-        elif not prod > _DET_BOUND * tol:
-            _jacobi_svd(A)
-            smin, smax = math.inf, 0.0
-            for a in range(5):
-                acc = 0.0
-                for r in range(A.shape[0]):
-                    acc += A[r, a] * A[r, a]
-                s = math.sqrt(acc)
-                smin, smax = min(smin, s), max(smax, s)
-            out[i] = smin < tol * smax
-    return out

@@ -17,7 +17,7 @@ import numpy as np
 
 from .._core import tca as _k
 from .._core import tca_batch as _b
-from .._core import tca_newton as _n
+from .._core import tca_solve as _n
 from ..errors import DesignError, Problem
 from .contact_surface import surface_derivatives
 from .misalignment import Misalignment
@@ -201,34 +201,16 @@ class ContactProblem:
                                                               aval, tol, max_iter, _RCOND, patience, _HALVINGS)
             return x, res < tol, res, J, (S1, S2, S1f, Q), it, E
         k = 6 if aj >= 0 else 5
-        x = x0.copy()
         with np.errstate(all="ignore"):
-            S1, S2 = self._stacked(x)
-        if not have_E:
-            _n.basis_batch(S2, x, M2, E)
-        F, J, S1f, Q = np.empty((m, k)), np.empty((m, k, 5)), np.empty((m, 3, 6)), np.empty((m, 6, 6))
-        _n.assemble_batch(S1, S2, c1, s1, x, d, M2, L, E, aj, aval, F, J, S1f, Q)
-        res, best = np.empty(m), np.empty(m)
-        stall, halved = np.zeros(m, np.int64), np.zeros(m, np.int64)
-        active, acc = np.zeros(m, bool), np.zeros(m, bool)
-        dx, xn, idx = np.zeros((m, 5)), np.empty((m, 5)), np.empty(m, np.int64)
-        n_active = _n.start(F, J, tol, res, best, stall, halved, active)
-        it = 0
-        while it < max_iter and n_active > 0:
-            it += 1
-            c = _n.propose(x, F, J, dx, halved, active, _RCOND, xn, idx)
-            ii, xt = idx[:c], xn[:c]
+            S1, S2 = self._stacked(x0)
+        run = _n.Iteration(m, k, c1, s1, E, d, M2, L, aj, aval, tol, max_iter, _RCOND, patience, _HALVINGS)
+        c = run.begin(x0, S1, S2, have_E)
+        while c:
             with np.errstate(all="ignore"):  # wild iterates give inf/NaN, handled by the halving rule
-                T1, T2 = self._stacked(xt)
-            Fn, Jn, T1f, TQ = np.empty((c, k)), np.empty((c, k, 5)), np.empty((c, 3, 6)), np.empty((c, 6, 6))
-            _n.assemble_batch(T1, T2, c1[ii], s1[ii], xt, d, M2, L, np.ascontiguousarray(E[ii]), aj,
-                              np.ascontiguousarray(aval[ii]), Fn, Jn, T1f, TQ)
-            n_active = _n.accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, tol, patience,
-                                 _HALVINGS, acc)
-            a = acc[:c]
-            ia = ii[a]
-            S1[ia], S2[ia], S1f[ia], Q[ia] = T1[a], T2[a], T1f[a], TQ[a]
-        return x, res < tol, res, J, (S1, S2, S1f, Q), it, E
+                T1, T2 = self._stacked(run.xn[:c])
+            c = run.advance(T1, T2)   # the accepted trials' data copied into S1, S2
+        x, res = run.x, run.res
+        return x, res < tol, res, run.J, (S1, S2, run.S1f, run.Q), run.iterations, run.E
 
     def path_tangent(self, J, S1f, basis):
         """dx/dphi1 (m, 5) from the Jacobian and fixed-frame pinion data of :meth:`newton` (minimum norm on a
