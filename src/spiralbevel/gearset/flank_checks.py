@@ -42,9 +42,10 @@ def synthesis_advice(source: str, spec=None, root: bool = False) -> str:
                "root cone (\"offset\" and \"modified-roll\" keep it on the cone)")
         if default:
             rc = f" (now {spec.gear_set.cutter_radius:g} mm)"
-            todo = ("give a [synthesis] section with synthesis.free = \"offset\" or \"modified-roll\" (the keys it "
-                    f"leaves out keep the defaults), or change gear_set.cutter_radius{rc}, with which the default "
-                    "search may take another set")
+            todo = ("give a [synthesis] section with synthesis.free = \"offset\" or \"modified-roll\" and a "
+                    "synthesis.path_direction (the default's is synthesis.<side>.eta_deg in the report; without a path "
+                    "direction the search may take the fixed blade again; the keys left out keep the defaults), or "
+                    f"change gear_set.cutter_radius{rc}, with which the default search may take another set")
         else:
             todo = "set synthesis.free = \"offset\" or \"modified-roll\""
         return f"{head}{why}; {todo}"
