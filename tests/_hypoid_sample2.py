@@ -52,3 +52,8 @@ def sample2_concave_pinion(blank, flanks, eta, semi_major_axis, te_magnitude):
     c, s, _, _ = flanks[(Member.PINION, Side.CONCAVE)]
     return synthesize_hypoid_pinion(flanks[(Member.GEAR, Side.CONVEX)][2], c, s, blank, eta=eta,
                                     semi_major_axis=semi_major_axis, te_magnitude=te_magnitude)
+
+#: ``[synthesis]`` keys with the seed 001 values (semi-major axis 3.7 mm, 3 arcsec, 0.00635 mm approach), appended to
+#: a given section whose tests were written for them: the keys a section leaves out keep the developed-pair defaults
+#: (0.15 b, 8 arcsec, b/5827)
+SEED001_SYNTHESIS = "semi_major_axis = 3.7\nte_magnitude = 3.0\napproach = 0.00635\n"

@@ -24,10 +24,10 @@ from spiralbevel.manufacturing.correction import apply_changes
 from spiralbevel.manufacturing.measurement import measure_deviation, measurement_grid
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from _hypoid_sample2 import SAMPLE2_TOML  # noqa: E402
+from _hypoid_sample2 import SAMPLE2_TOML, SEED001_SYNTHESIS  # noqa: E402
 
 #: the synthesis is given (one path direction, drive side only) so that the test does not run the default search
-DESIGN = SAMPLE2_TOML + '[synthesis]\nsides = ["drive"]\npath_direction = 40\n'
+DESIGN = SAMPLE2_TOML + '[synthesis]\nsides = ["drive"]\npath_direction = 40\n' + SEED001_SYNTHESIS
 TRUE = {"radial_setting": 0.05, "cradle_angle": math.radians(0.01), "blank_offset": -0.03}
 KEY = (Member.PINION, Side.CONCAVE)
 

@@ -19,10 +19,10 @@ from spiralbevel.job import sweep
 from spiralbevel.job.sweep import misalignment_sweep
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from _hypoid_sample2 import SAMPLE2_TOML  # noqa: E402
+from _hypoid_sample2 import SAMPLE2_TOML, SEED001_SYNTHESIS  # noqa: E402
 
 #: the synthesis is given (one path direction, drive side only) so that the test does not run the default search
-DESIGN = SAMPLE2_TOML + '[synthesis]\nsides = ["drive"]\npath_direction = 40\n'
+DESIGN = SAMPLE2_TOML + '[synthesis]\nsides = ["drive"]\npath_direction = 40\n' + SEED001_SYNTHESIS
 #: the same TCA solves reached through two paths to the same pair (sweep worker, GearSet): equal to round-off
 TE_TOL, PT_TOL = 1e-6, 1e-9
 

@@ -41,7 +41,27 @@ def test_flank_checks_name_the_key():
     assert len(msgs) == 3
     assert "face_milling.pinion_concave.cutter.blade_angle" in msgs[0] and "-0.300 deg" in msgs[0]
     assert "face_milling.pinion_concave.machine" in msgs[1]
-    assert "below the blank's root cone at the toe" in msgs[2]
+    assert "below the blank's root cone by 0.020 / 0.000 mm at the toe / heel" in msgs[2]
+
+
+def test_flank_checks_of_a_synthesized_flank_name_the_synthesis():
+    """A synthesized flank has no face_milling.<m>_<s>.machine to change: the root check names the [synthesis] keys
+    (the fixed-blade set, the one that solves the machine centre to back, first), says when the default synthesis
+    produced the flank, and gives toe/mean/heel in one line."""
+    a = math.radians(20.0)
+    fit = FlankFit(a, a, a, a, (-0.019, -0.0189, -0.0188), 3)
+    source = "local synthesis (coast side, free = fixed-blade)"
+    default = parse_design(design_12x41())
+    given = parse_design(design_12x41() + "\n[synthesis]\nfree = \"fixed-blade\"\n")
+    (msg,) = flank_checks(fit, Member.PINION, Side.CONVEX, source, default)
+    assert "face_milling" not in msg
+    assert "0.019 / 0.019 / 0.019 mm at the toe / mean / heel" in msg
+    assert "default synthesis (no [synthesis] section)" in msg and 'synthesis.free = "offset"' in msg
+    assert "gear_set.cutter_radius (now 114.3 mm)" in msg
+    (msg,) = flank_checks(fit, Member.PINION, Side.CONVEX, source, given)
+    assert "default synthesis" not in msg and 'set synthesis.free = "offset" or "modified-roll"' in msg
+    (msg,) = flank_checks(fit, Member.PINION, Side.CONVEX, "local synthesis (drive side, free = offset)", given)
+    assert "synthesis.path_direction" in msg and "face_milling" not in msg
 
 
 def _involute_top_land(d, s, ha, alpha_d, alpha_c):

@@ -23,7 +23,7 @@ from spiralbevel.conventions import Member, Side
 from spiralbevel.generation.basic_settings_solve import root_deviation
 from spiralbevel.generation.flank import generate_flank
 from spiralbevel.gearset.pinion_fillet import raise_root
-from spiralbevel.gearset.root_cone import (CAUSE, ROOT_STATIONS, root_cone, root_cone_checks,
+from spiralbevel.gearset.root_cone import (CAUSE, CAUSE_ABOVE, ROOT_STATIONS, root_cone, root_cone_checks,
                                            root_cone_messages, root_heights)
 from spiralbevel.io.design_file import parse_design
 from _design_12x41 import design_12x41
@@ -149,6 +149,31 @@ def test_messages_name_the_key(case):
     w = st.cutter.point_width - 2.0 * root_cone(flank).lowest * math.tan(st.cutter.blade_angle)
     assert "face_milling.point_width" in msg and f"at least {w:.3f} mm" in msg
     assert root_cone_messages(spec, setups, root_cone_checks(setups)) == {}    # the basic roots lie on the cone
+
+
+def test_root_above_the_cone_warns_with_reason_and_key(case):
+    """A root lifted 0.3 mm above the root cone (sliding base, basic settings otherwise) was never checked: it is now,
+    with the same 11-station measure (its heights against the brute force at toe, mean and heel), the reason (a
+    shallower tooth space: less clearance to the mate's tip) and the key; a synthesized flank's warning names the
+    [synthesis] keys, the fixed-blade set (which moves the tip plane) first."""
+    spec, blank, setups = case
+    st = setups[(Member.PINION, Side.CONVEX)]
+    lifted = dataclasses.replace(st.settings, sliding_base=st.settings.sliding_base - 0.3)
+    flank = generate_flank(st.cutter, lifted, blank, Member.PINION, Side.CONVEX)
+    res = root_cone(flank)
+    assert res.above and not res.below
+    # the brute force approaches the root from above by its grid spacing squared (< 1e-5 mm, see brute_root)
+    assert np.max(np.abs(brute_root(flank, res.R[[0, 5, 10]]) - res.height[[0, 5, 10]])) < 1e-5
+    assert res.to_dict()["highest_mm"] == pytest.approx(res.highest) and res.to_dict()["above"]
+    up = {(Member.PINION, Side.CONVEX): dataclasses.replace(st, settings=lifted, flank=flank)}
+    (msg,) = root_cone_messages(spec, up, root_cone_checks(up))[(Member.PINION, Side.CONVEX)]
+    assert msg.startswith(CAUSE_ABOVE) and f"{res.highest:.3f} mm above" in msg and "clearance" in msg
+    assert "face_milling.pinion_convex.machine.machine_root_angle" in msg
+    source = "local synthesis (coast side, free = fixed-blade)"
+    syn = {(Member.PINION, Side.CONVEX): dataclasses.replace(up[(Member.PINION, Side.CONVEX)], source=source)}
+    (msg,) = root_cone_messages(spec, syn, root_cone_checks(syn))[(Member.PINION, Side.CONVEX)]
+    assert "face_milling" not in msg and "default synthesis (no [synthesis] section)" in msg
+    assert 'synthesis.free = "offset" or "modified-roll"' in msg and "gear_set.cutter_radius" in msg
 
 
 def test_developed_pair_roots_on_the_cone():

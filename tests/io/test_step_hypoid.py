@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 
 from spiralbevel.conventions import Member, Side
-from _hypoid_sample2 import SAMPLE2_TOML
+from _hypoid_sample2 import SAMPLE2_TOML, SEED001_SYNTHESIS
 
 N_FACE, N_PROFILE = 9, 7
 #: a given synthesis (path 40 deg on both sides) instead of the default's search over path directions: same chain,
 #: a second instead of twenty
-SYNTHESIS = "\n[synthesis]\nsides = ['drive', 'coast']\npath_direction = 40.0\n"
+SYNTHESIS = "\n[synthesis]\nsides = ['drive', 'coast']\npath_direction = 40.0\n" + SEED001_SYNTHESIS
 
 
 def _design(hand="LH"):

@@ -138,22 +138,33 @@ def _default_spec_class():
 
 
 def effective_synthesis(spec, blank):
-    """The ``[synthesis]`` section, or the defaults when a face-milled design without given pinion settings has none.
+    """The synthesis of the design: the developed-pair defaults, each overridden by the key the ``[synthesis]``
+    section gives (``model_fields_set``: the keys written in the design file).
 
-    Returns ``None`` when nothing is synthesized (a pinion side with given machine settings keeps them).
+    A key the section leaves out keeps the developed-pair default (``DEFAULT_SYNTHESIS``): both sides (those whose
+    pinion machine settings the design file gives keep them), semi-major axis 0.15 b, approach b/5827, parabolic TE
+    8 arcsec; without ``path_direction`` the default search over path directions (and depths of the mean contact
+    point, sets of solved settings, the given ``free`` first, and lower TE levels) runs, with the section's values.
+    Returns ``None`` when nothing is synthesized (every pinion side with given machine settings keeps them).
     """
-
-    if spec.synthesis is not None:
-        return spec.synthesis
+    given = spec.synthesis
+    keys = set() if given is None else set(given.model_fields_set)
     fmspec = spec.face_milling
-    sides = tuple(name for name in DEFAULT_SYNTHESIS["sides"]
-                  if getattr(fmspec, f"pinion_{PAIR_SIDES[name][0].value}").machine is None)
+    if "sides" in keys:
+        sides = tuple(given.sides)
+    else:
+        sides = tuple(name for name in DEFAULT_SYNTHESIS["sides"]
+                      if getattr(fmspec, f"pinion_{PAIR_SIDES[name][0].value}").machine is None)
     if not sides:
         return None
     d = DEFAULT_SYNTHESIS
-    return _default_spec_class()(sides=sides, path_direction=d["path_direction"],
-                         semi_major_axis=d["semi_major_axis_fraction"] * float(blank.b2),
-                         approach=d["approach_fraction"] * float(blank.b2), te_magnitude=d["te_magnitude"])
+    values = dict(sides=sides, path_direction=d["path_direction"],
+                  semi_major_axis=d["semi_major_axis_fraction"] * float(blank.b2),
+                  approach=d["approach_fraction"] * float(blank.b2), te_magnitude=d["te_magnitude"])
+    if given is not None:
+        values.update({k: getattr(given, k) for k in keys if k != "sides"})
+    cls = _default_spec_class() if "path_direction" not in keys else type(given)
+    return cls(**values)
 
 
 #: design-file names of the pair sides: (pinion side, gear side)

@@ -14,9 +14,10 @@ from .flank_checks import flank_checks
 from .flank_setup import MEMBERS
 from .tooth_assembly import tooth_rotation
 
-def flank_report(setups, blank=None):
+def flank_report(setups, blank=None, spec=None):
     """``flanks`` and ``machine_settings`` report sections (degrees, mm, 1/mm); with the blank, each flank's design
-    against achieved mean-point angles and root position (``design_vs_achieved``)."""
+    against achieved mean-point angles and root position (``design_vs_achieved``); with the design ``spec``, the
+    checks of a synthesized flank say whether the default synthesis produced it (``flank_checks``)."""
     from ..generation.basic_settings_solve import flank_fit
     from .units import MACHINE_SETTING_UNITS, suffixed
 
@@ -46,7 +47,7 @@ def flank_report(setups, blank=None):
         fit = st.fit if st.fit is not None else (flank_fit(blank, st.flank) if blank is not None else None)
         if fit is not None:
             flanks[m.value][s.value]["design_vs_achieved"] = fit.to_dict()
-            flanks[m.value][s.value]["checks"] = flank_checks(fit, m, s)
+            flanks[m.value][s.value]["checks"] = flank_checks(fit, m, s, st.source, spec)
     if blank is not None:   # the concave flank of each tooth turned to the mean normal thickness (tooth_rotation)
         for m in MEMBERS:
             if (m, Side.CONVEX) in setups and (m, Side.CONCAVE) in setups:
@@ -84,7 +85,9 @@ def cmc_paper_model(spec, blank, setups, name):
     from ..meshing import synthesis as syn
     from ..meshing.synthesis.cmc_design import design_seed001_style, te_summary
 
-    sy = spec.synthesis
+    from .default_synthesis import effective_synthesis
+
+    sy = effective_synthesis(spec, blank)   # the section's keys over the developed-pair defaults
     s1, s2 = PAIR_SIDES[name]
     gear = setups[(Member.GEAR, s2)]
     d = design_seed001_style(gear.cutter, gear.settings, blank, side=s1, eta=math.radians(sy.path_direction),

@@ -203,7 +203,7 @@ class GearSet:
         from .results import MachineSummary
 
         self._require("face-milled", "machine_summary() (log-spiral flanks are not cut by a face-milling cutter)")
-        flanks, machines = flank_report(self.setups, self.blank)
+        flanks, machines = flank_report(self.setups, self.blank, self.design)
         if not self.is_hypoid:
             from .slot_check import slot_report
 

@@ -40,7 +40,7 @@ from ..conventions import Member, Side
 from ..errors import DesignError, GeometryError
 
 __all__ = ["RootCone", "root_heights", "root_cone", "root_cone_checks", "root_cone_messages",
-           "root_cone_report", "ROOT_STATIONS", "CHECK_ROOT_MM"]
+           "root_cone_report", "ROOT_STATIONS", "CHECK_ROOT_MM", "CAUSE", "CAUSE_ABOVE"]
 
 #: face stations (toe to heel, both included) at which the generated root is compared with the root cone
 ROOT_STATIONS = 11
@@ -49,6 +49,8 @@ ROOT_STATIONS = 11
 CHECK_ROOT_MM = 0.01
 #: the failure cause as the warning names it (the robustness bench counts designs by it)
 CAUSE = "root below the root cone"
+#: the cause of a root more than ``CHECK_ROOT_MM`` above the root cone: a shallower tooth space than designed
+CAUSE_ABOVE = "root above the root cone"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -81,8 +83,24 @@ class RootCone:
     def below(self) -> bool:
         return self.lowest < -CHECK_ROOT_MM
 
+    @property
+    def highest(self) -> float:
+        """Largest height (mm) of the root above the root cone."""
+        return float(np.max(self.height))
+
+    @property
+    def highest_position(self) -> float:
+        """Where the root lies highest, as a fraction of the face width from the toe."""
+        i = int(np.argmax(self.height))
+        return float((self.R[i] - self.R[0]) / (self.R[-1] - self.R[0]))
+
+    @property
+    def above(self) -> bool:
+        return self.highest > CHECK_ROOT_MM
+
     def to_dict(self) -> dict:
         return {"lowest_mm": self.lowest, "face_position": self.face_position, "below": self.below,
+                "highest_mm": self.highest, "above": self.above,
                 "height_mm": [float(v) for v in self.height], "cone_distance_mm": [float(v) for v in self.R]}
 
 
@@ -137,7 +155,8 @@ def root_cone_checks(setups) -> dict:
 
 def root_cone_messages(spec, setups, checks) -> dict:
     """{(member, side): [warning]} for the flanks whose root lies below the root cone, each naming the design-file
-    key to change (and, for a synthesized pinion with a given point width, the width that places the root)."""
+    key to change (and, for a synthesized pinion with a given point width, the width that places the root), and for
+    those whose root lies above it (:func:`_above_message`)."""
     from .slot_check import cutter_key
 
     out = {}
@@ -145,6 +164,8 @@ def root_cone_messages(spec, setups, checks) -> dict:
         if isinstance(res, Exception):
             out[(m, s)] = [f"root against the root cone not checked: {str(res).splitlines()[0]}"]
             continue
+        if res.above:
+            out.setdefault((m, s), []).append(_above_message(spec, setups[(m, s)], res))
         if not res.below:
             continue
         st = setups[(m, s)]
@@ -161,13 +182,31 @@ def root_cone_messages(spec, setups, checks) -> dict:
                     f"{c.point_width:.3f} mm ({cutter_key(spec, m, s, 'point_width')}); leave it out (the root is then "
                     f"placed on the root cone, the blade unchanged) or give at least {w:.3f} mm")
         elif "synthesis" in st.source:
-            todo = ("the synthesized settings put the cutter's tip there and the blade could not be cut back to the "
-                    "root cone; change the [synthesis] section (synthesis.path_direction, synthesis.semi_major_axis)")
+            from .flank_checks import synthesis_advice
+
+            todo = synthesis_advice(st.source, spec, root=True)
         else:
             todo = (f"change {key}.machine.machine_root_angle / sliding_base (or leave {key} out to have them "
                     "solved)")
-        out[(m, s)] = [f"{head}; {todo}"]
+        out.setdefault((m, s), []).append(f"{head}; {todo}")
     return out
+
+
+def _above_message(spec, st, res) -> str:
+    """The warning on a root more than ``CHECK_ROOT_MM`` above the root cone, with its reason and key: the tooth
+    space is shallower than the blank's, so the clearance between this root and the mate's tip is that much smaller
+    than designed (the mate's tip meets the root once the height reaches the clearance), and the fillet, generated
+    up from the root, rises on the flank with it (a shorter working depth before the mate's tip meets the fillet)."""
+    from .flank_checks import synthesis_advice
+
+    head = (f"{CAUSE_ABOVE}: the generated root lies up to {res.highest:.3f} mm above the blank's root cone "
+            f"({res.highest_position:.2f} of the face width from the toe): the tooth space is shallower than "
+            f"designed, the clearance to the mate's tip up to {res.highest:.3f} mm smaller and the fillet as much "
+            "higher on the flank (less working depth before the mate's tip meets it)")
+    if "synthesis" in st.source:
+        return f"{head}; {synthesis_advice(st.source, spec, root=True)}"
+    key = f"face_milling.{st.member.value}_{st.side.value}"
+    return f"{head}; change {key}.machine.machine_root_angle / sliding_base (or leave {key} out to have them solved)"
 
 
 def root_cone_report(spec, setups, flanks) -> None:
@@ -185,8 +224,9 @@ def root_cone_report(spec, setups, flanks) -> None:
             flanks.setdefault(m.value, {}).setdefault(s.value, {})["root_cone"] = res.to_dict()
     for (m, s), texts in root_cone_messages(spec, setups, checks).items():
         d = flanks.setdefault(m.value, {}).setdefault(s.value, {})
-        if any("below the blank's root cone" in t for t in d.get("checks", ())):
-            continue
+        said = any("below the blank's root cone" in t for t in d.get("checks", ()))
         for text in texts:
+            if said and text.startswith(CAUSE):
+                continue
             d.setdefault("checks", []).append(text)
             warnings.warn(f"{m.value} {s.value}: {text}", DesignWarning, stacklevel=2)

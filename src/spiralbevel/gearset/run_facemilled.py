@@ -22,7 +22,7 @@ def run_facemilled(gs, out, steps, report, summary):
         cmc = {name: d for name, d in synth.items() if hasattr(d, "multipoint")}
     with steps.step("generated flanks and curvatures"):
         grids = gs.grids(n_face, n_profile)
-        flanks, machines = fm.flank_report(setups, blank)
+        flanks, machines = fm.flank_report(setups, blank, spec)
         from .slot_check import slot_report
 
         slot_report(spec, blank, setups, flanks)      # each cutter's opposite blade against the opposite flank

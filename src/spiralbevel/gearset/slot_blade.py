@@ -30,6 +30,10 @@ SLOT_FILLET_ROWS = 9
 #: cradle angles (rad, about the machine's zero roll) and samples of the tabulated tip line: the span of the
 #: generation tables of ``generation.locate.Locator``, sampled every 2e-3 rad
 _PSI_SPAN, _N_PSI = 1.2, 1201
+#: a tabulated crossing at a station is on the branch of its neighbour's when it lies within this many times the
+#: stations' spacing in cone distance (plus 1 mm) of the neighbour's point: along the tip line a point moves by
+#: dR / cos(beta) lengthwise and the line's rise over the face, a few dR at the spiral angles of bevel gears
+_BRANCH_STEP = 4.0
 #: steps of R between two face stations where the tip line is continued by Newton's method
 _N_CONTINUE = 8
 #: largest height step (fraction of the whole depth) between two fillet rows, and levels of bisection to reach it
@@ -124,12 +128,14 @@ def _tip_line(gen, ol, R, near):
             chosen[k], y0[k] = best[0], (best[1], best[2])
             continue
         nb = k + 1 if k < k0 else k - 1
-        if cands[k]:
-            best = min(cands[k], key=lambda c: float(np.linalg.norm(c[0] - chosen[nb])))
+        best = min(cands[k], key=lambda c: float(np.linalg.norm(c[0] - chosen[nb]))) if cands[k] else None
+        if best is not None and np.linalg.norm(best[0] - chosen[nb]) <= _BRANCH_STEP * abs(R[k] - R[nb]) + 1.0:
             chosen[k], y0[k] = best[0], (best[1], best[2])
             continue
-        # no tabulated crossing (the tip line passes from one root to the other there, the fold of the (u, psi_c)
-        # chart): continued from the neighbouring station in small steps of R, regular across the fold
+        # no tabulated crossing on this branch (the tip line passes from one root to the other there, the fold of the
+        # (u, psi_c) chart; a crossing farther from the neighbour's point than the branch can run lies on another
+        # branch of the envelope: 76 mm above the root cone at the toe of a 15/45 gear at beta 5 deg):
+        # continued from the neighbouring station in small steps of R, regular across the fold
         y = y0[nb][None]
         for Rs in np.linspace(R[nb], R[k], _N_CONTINUE + 1)[1:]:
             y, conv = _solve_rows(gen, ol, np.array([Rs]), u0, y)

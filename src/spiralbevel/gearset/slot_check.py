@@ -90,7 +90,7 @@ def slot_messages(spec, blank, setups, checks) -> dict:
     for (m, s), res in checks.items():
         key = cutter_key(spec, m, s, "point_width")
         if isinstance(res, Exception):
-            out[(m, s)] = [f"cutter fit in the slot not checked: {str(res).splitlines()[0]}"]
+            out[(m, s)] = [_not_checked(blank, m, s, res)]
             continue
         if res.fits:
             continue
@@ -120,6 +120,38 @@ def slot_messages(spec, blank, setups, checks) -> dict:
                        f"{res.point_width:.3f} mm) cuts {res.intrusion:.3f} mm into the {_other(s).value} flank "
                        f"({where}); {todo}"]
     return out
+
+
+#: spiral angle (deg) at the toe or heel below which a failed slot check names the fold of the generated surface
+#: there as the likely cause (the cutter's tip line turns back near a zero spiral angle)
+_FOLD_SPIRAL_DEG = 3.0
+
+
+def _not_checked(blank, member, side, err) -> str:
+    """The warning for a flank whose slot check could not be computed: what failed, in the user's terms, and what to
+    change (the internal locator messages name a grid and a blade parameter, which the user cannot act on)."""
+    import math
+
+    prob = getattr(err, "problems", [None])[0]
+    field, value = (getattr(prob, "field", ""), getattr(prob, "value", "")) if prob is not None else ("", "")
+    other = _other(side).value
+    if field == "grid(fillet)":
+        what = (f"the fillet that the opposite blade of the {side.value} side's cutter generates could not be followed "
+                f"from its junction to the root at {str(value).split(' points')[0]} face stations")
+    elif field.startswith("slot check"):
+        what = f"the opposite blade's cut could not be followed ({err.problems[0].reason or value})"
+    else:
+        what = f"the opposite blade's cut could not be computed ({str(err).splitlines()[0]})"
+    i = Member(member).index
+    ends = {"toe": float(getattr(blank, f"beta_i{i}")), "heel": float(getattr(blank, f"beta_e{i}"))}
+    near = [f"{k} {math.degrees(v):+.1f} deg" for k, v in ends.items() if abs(math.degrees(v)) < _FOLD_SPIRAL_DEG]
+    if near:
+        todo = (f"the spiral angle is near zero at the {' and '.join(near)}, where the generated surface folds: "
+                "raise gear_set.cutter_radius or gear_set.mean_spiral_angle, or lower gear_set.face_width")
+    else:
+        todo = (f"whether the cutter cuts into the finished {other} flank is unknown: check the tooth space of the "
+                "STEP/STL solid, or change the cutter (face_milling.point_width, face_milling.edge_radius)")
+    return f"cutter fit in the slot not checked: {what}; {todo}"
 
 
 def slot_report(spec, blank, setups, flanks) -> None:

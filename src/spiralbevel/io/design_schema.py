@@ -172,18 +172,26 @@ class SynthesisSpec(_Model):
     """Local synthesis of the pinion settings from the gear's (seed 001 §4; Litvin).
 
     Without this section a face-milled design is developed by default: both pinion sides synthesized, the path
-    direction searched until the bearing stays inside the flanks, a semi-major axis of 0.15 b, a parabolic TE of 8
-    arcsec (docs/conventions.md, "Developed pair by default"). The section replaces that default as a whole: the
-    defaults below apply to every key it leaves out (only the drive side, path direction 6 deg, 3.7 mm, 3 arcsec), so
-    give `sides = ["drive", "coast"]` and every value you mean."""
+    direction searched until the bearing stays inside the flanks, a semi-major axis of 0.15 b, an elastic approach
+    of b/5827, a parabolic TE of 8 arcsec (docs/conventions.md, "Developed pair by default"). The section overrides
+    those defaults key by key: a key it leaves out keeps the developed-pair default (not the field default listed
+    here, which only documents the seed 001 values), and without `path_direction` the default search over path
+    directions runs with the section's values (`te_magnitude = 12` alone develops both sides at 12 arcsec)."""
 
-    sides: tuple[Literal["drive", "coast"], ...] = _f(("drive",), description="sides whose pinion flank is synthesized")
+    sides: tuple[Literal["drive", "coast"], ...] = _f(
+        ("drive",), description="sides whose pinion flank is synthesized; left out: both (a side with given pinion "
+        "machine settings keeps them)")
     path_direction: Angle = _f(6.0, unit="deg", gt=-60.0, lt=60.0,
-                               description="eta on the gear, from the profile direction, + toward the heel")
-    semi_major_axis: float = _f(3.7, unit="mm", gt=0.0, le=50.0, description="contact ellipse a at the mean point")
-    te_magnitude: float = _f(3.0, unit="arcsec", gt=0.0, le=600.0, description="parabolic TE over one mesh cycle")
-    approach: float = _f(0.00635, unit="mm", gt=0.0, le=0.1, description="elastic approach of the ellipse")
-    free: Literal["offset", "modified-roll", "fixed-blade"] = _f("offset", description="settings solved for")
+                               description="eta on the gear, from the profile direction, + toward the heel; left "
+                               "out: the default search over path directions")
+    semi_major_axis: float = _f(3.7, unit="mm", gt=0.0, le=50.0,
+                                description="contact ellipse a at the mean point; left out: 0.15 b")
+    te_magnitude: float = _f(3.0, unit="arcsec", gt=0.0, le=600.0,
+                             description="parabolic TE over one mesh cycle; left out: 8 arcsec")
+    approach: float = _f(0.00635, unit="mm", gt=0.0, le=0.1,
+                         description="elastic approach of the ellipse; left out: b/5827")
+    free: Literal["offset", "modified-roll", "fixed-blade"] = _f(
+        "offset", description="settings solved for; left out: offset (the default search also tries the others)")
     motion_curve: Literal["parabolic", "cmc"] = _f(
         "parabolic", description="'cmc': predesigned fourth-order combined motion curve by multi-point control "
         "of the pinion blank offset (drive side)")
