@@ -186,3 +186,21 @@ def test_developed_pair_roots_on_the_cone():
     assert "synthesis" in st.source
     got = checks[(Member.PINION, Side.CONCAVE)]
     assert np.max(np.abs(brute_root(st.flank, got.R[[0, 10]]) - got.height[[0, 10]])) < 1e-5   # as above
+
+
+#: a miter set whose default drive synthesis (free = fixed-blade) cuts the pinion's root 1.576 mm below the root cone
+#: with a machine root angle tilted 8.15 deg (the dedendum angle) from the root cone's: a move of the sliding base by
+#: the depth would lift the root 1.592 mm, 0.016 mm above the cone (found by a newcomer's walk with own designs)
+DESIGN_MITER = basic_design(20, 20, module=4, face_width=25, mean_spiral_angle=30, hand="LH",
+                            title="20/20 miter, the sliding base tilted against the root cone")
+
+
+def test_raise_root_lands_on_the_cone_where_the_slide_is_tilted():
+    _, _, setups, _ = developed(DESIGN_MITER)
+    flank = setups[(Member.PINION, Side.CONCAVE)].flank
+    assert "root raised" in setups[(Member.PINION, Side.CONCAVE)].source
+    rc = root_cone(flank)
+    # the highest of the 11 stations on the cone (the secant step is exact for a parallel shift of the tip plane),
+    # checked by the swept tip circle at every station (the oracle's own 1e-5 mm)
+    assert abs(rc.highest) < 1e-6 and not rc.below and not rc.above
+    assert abs(np.max(brute_root(flank, rc.R))) < 1e-5

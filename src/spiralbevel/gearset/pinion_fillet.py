@@ -146,9 +146,19 @@ def raise_root(blank, res):
     dev = _root_heights(res)
     if not dev or max(dev) >= -CHECK_ROOT_MM:
         return res
-    new = _move_root(blank, res, max(dev), keep_width=True)
+    h0 = max(dev)
+    new = _move_root(blank, res, h0, keep_width=True)
     if new is res:
         return res
+    # the move along the cradle axis need not be normal to the root cone (the machine root angle of a synthesized
+    # pinion is free): the root then moves h0 / cos(tilt) (0.016 mm above the cone after a 1.59 mm raise on a miter at
+    # a dedendum angle of 8.15 deg); one secant step on the measured heights puts it back (the heights are linear in the
+    # move: a parallel shift of the tip plane)
+    h1 = max(_root_heights(new) or [0.0])
+    if abs(h1) > 0.5 * CHECK_ROOT_MM and abs(h1 - h0) > 1e-12:
+        again = _move_root(blank, res, -h0 * h0 / (h1 - h0), keep_width=True)
+        if again is not res:
+            new = again
     return _keep_junction_below_mate_tip(blank, res, new)
 
 
