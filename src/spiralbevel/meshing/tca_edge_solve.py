@@ -54,7 +54,7 @@ def _shares(kind, prm, b):
     return out
 
 
-_SHARES = {}
+_SHARES: dict[tuple, tuple] = {}   # (kind, id of the parameters, id of the margins) -> (parameters, margins, shares)
 
 
 def _setup(prob):
