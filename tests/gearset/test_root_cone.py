@@ -204,3 +204,20 @@ def test_raise_root_lands_on_the_cone_where_the_slide_is_tilted():
     # checked by the swept tip circle at every station (the oracle's own 1e-5 mm)
     assert abs(rc.highest) < 1e-6 and not rc.below and not rc.above
     assert abs(np.max(brute_root(flank, rc.R))) < 1e-5
+
+
+#: design 58 of ``bench_robustness.py 100 2``: the default coast synthesis (free = fixed-blade) put the pinion's
+#: cutter tip plane 1.85 mm above the root cone at every station (a shallower tooth space, less than the clearance to
+#: the gear's tip left); the default synthesis lowers it onto the cone (blade extended, point width narrower)
+DESIGN_17x24 = basic_design(17, 24, shaft_angle="94.491", module="8.755", face_width="19.483",
+                            mean_spiral_angle="16.142", hand="LH", cutter_radius="118.84",
+                            title="17/24 of the robustness bench (bench_robustness.py 100 2, design 58)")
+
+
+def test_default_synthesis_lowers_a_root_above_the_cone():
+    _, _, setups, _ = developed(DESIGN_17x24)
+    st = setups[(Member.PINION, Side.CONVEX)]
+    assert "root lowered onto the root cone" in st.source
+    rc = root_cone(st.flank)
+    assert abs(rc.lowest) < 1e-6 and not rc.below and not rc.above     # the lowest station on the cone (secant step)
+    assert abs(np.min(brute_root(st.flank, rc.R))) < 1e-5              # the swept tip circle's own 1e-5 mm

@@ -120,7 +120,7 @@ def lower_root(blank, res):
     dev = _root_heights(res)
     if not dev or min(dev) <= CHECK_ROOT_MM:
         return res
-    return _move_root(blank, res, min(dev))
+    return _move_root_onto(blank, res, min(dev), min)
 
 
 def raise_root(blank, res):
@@ -146,20 +146,31 @@ def raise_root(blank, res):
     dev = _root_heights(res)
     if not dev or max(dev) >= -CHECK_ROOT_MM:
         return res
-    h0 = max(dev)
-    new = _move_root(blank, res, h0, keep_width=True)
+    new = _move_root_onto(blank, res, max(dev), max, keep_width=True)
     if new is res:
         return res
-    # the move along the cradle axis need not be normal to the root cone (the machine root angle of a synthesized
-    # pinion is free): the root then moves h0 / cos(tilt) (0.016 mm above the cone after a 1.59 mm raise on a miter at
-    # a dedendum angle of 8.15 deg); one secant step on the measured heights puts it back (the heights are linear in the
-    # move: a parallel shift of the tip plane)
-    h1 = max(_root_heights(new) or [0.0])
+    return _keep_junction_below_mate_tip(blank, res, new)
+
+
+def _move_root_onto(blank, res, h0: float, which, keep_width: bool = False):
+    """``res`` with its root moved so that its station ``which`` (max: the highest, min: the lowest) of the root
+    heights ``h0`` (mm) lies on the root cone (:func:`_move_root`); ``res`` itself when it cannot be moved.
+
+    The move along the cradle axis need not be normal to the root cone (the machine root angle of a synthesized pinion
+    is free): the root then moves h0 / cos(tilt) (0.016 mm above the cone after a 1.59 mm raise on a 20/20 miter with
+    its slide tilted by the dedendum angle, 8.15 deg); one secant step on the measured heights puts it back (they are
+    linear in the move: a parallel shift of the tip plane)."""
+    from .root_cone import CHECK_ROOT_MM
+
+    new = _move_root(blank, res, h0, keep_width=keep_width)
+    if new is res:
+        return res
+    h1 = which(_root_heights(new) or [0.0])
     if abs(h1) > 0.5 * CHECK_ROOT_MM and abs(h1 - h0) > 1e-12:
-        again = _move_root(blank, res, -h0 * h0 / (h1 - h0), keep_width=True)
+        again = _move_root(blank, res, -h0 * h0 / (h1 - h0), keep_width=keep_width)
         if again is not res:
             new = again
-    return _keep_junction_below_mate_tip(blank, res, new)
+    return new
 
 
 def _keep_junction_below_mate_tip(blank, old, new, n_face: int = JUNCTION_STATIONS):
