@@ -131,9 +131,10 @@ def test_clearance_side_does_not_decide_the_fit(without_rule):
     """A single-sided pinion blade (docs/report.md, "Spread blades or single-sided blades?") has its clearance corner
     where the spread-blade model has the opposite blade's tip, with a clearance side of the blade designer's choosing.
     The brute-force sweep at the floor width, with the clearance side at the convex flank's blade angle and turned
-    by -5 deg, finds a collision with both (measured 0.399 and 0.356 mm at the face station where the check finds the
-    deepest cut, at the convex flank's root edge and fillet): the tip corner, which runs below the convex flank's
-    root, decides that the blade cuts; the clearance side changes only how deep (by 0.04 mm here)."""
+    by -5 deg (its edge radius as that point holds), finds a collision with both (measured 0.427 and 0.457 mm at the
+    face station where the check finds the deepest cut, at the convex flank's root edge and fillet; the convex pinion's
+    root now lowered onto the root cone): the tip corner, which runs below the convex flank's root, decides that the
+    blade cuts; the clearance side changes only how deep (by 0.03 mm here)."""
     blank, setups = without_rule
     st = _at_floor(setups, Side.CONCAVE)
     b = st[(Member.PINION, Side.CONVEX)]
@@ -141,8 +142,8 @@ def test_clearance_side_does_not_decide_the_fit(without_rule):
     val, _, _, _, (under, _, _) = sc.intrusion_field(blank, st, Member.PINION, Side.CONCAVE, with_root_edge=True)
     station = int(np.argmax(np.maximum(val.max(1), under.max(1))))      # the same face station for both runs
     for turn in (0.0, -5.0):
-        st[(Member.PINION, Side.CONVEX)] = replace(b, cutter=replace(b.cutter,
-                                                                      blade_angle=b.cutter.blade_angle
-                                                                      + math.radians(turn)))
+        a = b.cutter.blade_angle + math.radians(turn)   # edge radius as the turned blade's point holds (_at_floor)
+        rho = min(b.cutter.edge_radius, 0.45 * b.cutter.point_width * math.cos(a) / (1.0 - math.sin(a)))
+        st[(Member.PINION, Side.CONVEX)] = replace(b, cutter=replace(b.cutter, blade_angle=a, edge_radius=rho))
         depth.append(_tsc._swept_penetration(blank, st, Member.PINION, Side.CONCAVE, station=station))
     assert min(depth) > 0.3
