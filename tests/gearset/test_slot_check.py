@@ -308,7 +308,7 @@ def _without_root_raise(monkeypatch):
     (tests/gearset/test_slot_open.py)."""
     from spiralbevel.gearset import pinion_fillet
 
-    monkeypatch.setattr(pinion_fillet, "raise_root", lambda blank, res: res)
+    monkeypatch.setattr(pinion_fillet, "raise_root", lambda blank, res, dev=None: res)
     _without_tca_edge_radius(monkeypatch)
 
 

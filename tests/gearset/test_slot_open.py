@@ -58,7 +58,7 @@ def _develop(monkeypatch=None):
         blank = blank_from_design(spec)
         if monkeypatch is not None:      # the search without the rule and without the root raise
             monkeypatch.setattr(slot_open, "slot_closed", lambda *a, **k: False)
-            monkeypatch.setattr(pinion_fillet, "raise_root", lambda blank, res: res)
+            monkeypatch.setattr(pinion_fillet, "raise_root", lambda blank, res, dev=None: res)
         setups = fm.setup_flanks(spec, blank)
     return blank, setups
 

@@ -363,7 +363,7 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
 
     Returns (best, tried, last error): best = (positions off the flank, SynthesisResult, free set name) or None.
     """
-    from .pinion_fillet import fit_pinion_edge_radius, lower_root, raise_root
+    from .pinion_fillet import fit_pinion_edge_radius, lower_root, place_root
     from .refit_bearing import off_after_refit
     from .slot_open import slot_closed
 
@@ -391,11 +391,12 @@ def _candidates(sy, blank, gear, pin, s1, te, syn, default, max_syntheses, refit
         if default:
             _require_near_branch(res, pin)
         if default and refit and floors is not None and floors[s1] < 1.0:
-            new = raise_root(blank, res)    # a cutter tip plane below the root cone back on it (pinion_fillet.py)
-            if new is not res and raised is not None:   # {id: (result, mm raised)} for the report's source line
-                raised[id(new)] = (new, res.pinion_settings.sliding_base - new.pinion_settings.sliding_base)
-            elif new is res:   # a tip plane above the root cone (the free settings moved it: 1.85 mm on 17/24 of
-                new = lower_root(blank, res)   # bench_robustness.py 100 2) down on it: blade extended, point narrower
+            # a cutter tip plane below the root cone raised onto it, one above it (the free settings moved it: 1.85 mm
+            # on 17/24 of bench_robustness.py 100 2) lowered onto it, blade extended, point narrower (pinion_fillet.py)
+            new = place_root(blank, res)
+            up = res.pinion_settings.sliding_base - new.pinion_settings.sliding_base
+            if up > 0.0 and raised is not None:   # {id: (result, mm raised)} for the report's source line
+                raised[id(new)] = (new, up)
             res = new
         return res
 

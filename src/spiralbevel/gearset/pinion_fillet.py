@@ -100,7 +100,7 @@ def gear_top_height(blank, R) -> np.ndarray:
     return hf1 - ha2
 
 
-def lower_root(blank, res):
+def lower_root(blank, res, dev=None):
     """The synthesis result ``res`` with its pinion root put on the blank's root cone at the face station where it
     lies lowest (of the ``ROOT_STATIONS`` stations of the root-cone check, ``_root_heights``; nowhere below it),
     blade surface unchanged (module docstring); ``res`` itself when the root lies within ``CHECK_ROOT_MM`` of the
@@ -110,6 +110,8 @@ def lower_root(blank, res):
     ----------
     blank : BevelBlank
     res : SynthesisResult
+    dev : list of float or None, mm
+        ``_root_heights(res)`` when the caller has measured them already.
 
     Returns
     -------
@@ -117,13 +119,13 @@ def lower_root(blank, res):
     """
     from .root_cone import CHECK_ROOT_MM
 
-    dev = _root_heights(res)
+    dev = _root_heights(res) if dev is None else dev
     if not dev or min(dev) <= CHECK_ROOT_MM:
         return res
     return _move_root_onto(blank, res, min(dev), min)
 
 
-def raise_root(blank, res):
+def raise_root(blank, res, dev=None):
     """The synthesis result ``res`` with its pinion root put on the blank's root cone at the face station where it
     lies highest (of the ``ROOT_STATIONS`` stations of the root-cone check, ``_root_heights``; nowhere above it),
     blade surface unchanged: the blade shortened (module docstring); ``res`` itself when the root lies within
@@ -136,6 +138,8 @@ def raise_root(blank, res):
     ----------
     blank : BevelBlank
     res : SynthesisResult
+    dev : list of float or None, mm
+        ``_root_heights(res)`` when the caller has measured them already.
 
     Returns
     -------
@@ -143,13 +147,23 @@ def raise_root(blank, res):
     """
     from .root_cone import CHECK_ROOT_MM
 
-    dev = _root_heights(res)
+    dev = _root_heights(res) if dev is None else dev
     if not dev or max(dev) >= -CHECK_ROOT_MM:
         return res
     new = _move_root_onto(blank, res, max(dev), max, keep_width=True)
     if new is res:
         return res
     return _keep_junction_below_mate_tip(blank, res, new)
+
+
+
+def place_root(blank, res):
+    """``res`` with its pinion root put on the blank's root cone: raised where it lies below it
+    (:func:`raise_root`), lowered where it lies above it (:func:`lower_root`), from one measure of its heights;
+    ``res`` itself where it lies on it (within ``CHECK_ROOT_MM``) or cannot be moved."""
+    dev = _root_heights(res)
+    new = raise_root(blank, res, dev)
+    return lower_root(blank, res, dev) if new is res else new
 
 
 def _move_root_onto(blank, res, h0: float, which, keep_width: bool = False):
