@@ -171,7 +171,7 @@ def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, to
     return count
 
 
-@kernel(inline="always")   # two call sites: tca_transfer._te_one and newton_batch (CONTINUE)
+@kernel   # a kernel of its own, called from newton_batch (CONTINUE) and tca_transfer.transfer_points: typed once
 def newton_one(kind1, p1, kind2, p2, c1, s1, x, d, M2, L, tol, max_iter, rcond, patience, halvings, F, J, S1f, E):
     """The iteration of :func:`newton_batch` (``JETS``, basis rows ``E (2, 3)`` from the gear normal at the start, no
     anchor) on one system, ``x (5,)`` updated in place, its system ``F (5,)``, ``J (5, 5)`` and fixed-frame pinion

@@ -97,7 +97,7 @@ def illinois_accept(c, p, ta, tb, lo, hi, d_lo, d_hi, side, phi_t, te_t, cross, 
 (SCALE, TOL, RCOND, EDGE_RCOND, H_TAU, DRIVE, PHI2_MEAN, RATIO, PHI1_MEAN, Z1, Z2) = range(11)
 
 
-@kernel
+@kernel(inline="always")   # one call site: transfer_points
 def _te_one(iv, fv, p1, p2, mp1, mp2, junction, d, M2, phi, k, kind, x, xo):
     """TE (rad, NaN where not converged) of pair ``k`` at pinion rotation ``phi`` and its solution ``xo (5,)`` from
     ``x (5,)``: a surface contact (``kind`` < 0, :func:`~spiralbevel._core.tca_newton.newton_one`) or the edge or
@@ -180,37 +180,47 @@ def transfer_points(iv, fv, p1, p2, mp1, mp2, junction, d, M2, lo, hi, te_a_lo, 
         interval).
     """
     m = lo.shape[0]
-    xn = np.empty(5)
-    xm = np.empty(5)
+    xo = np.empty((2, 5))   # the trial solutions of pair a and pair b
+    t = np.empty(2)
+    use = np.empty(2, np.bool_)
+    phis = np.empty(2)
+    d_lo, d_hi, bl, bh, pt, tt = np.empty(1), np.empty(1), np.empty(1), np.empty(1), np.empty(1), np.empty(1)
+    cross = np.empty(1, np.bool_)
+    side = np.empty(1, np.int64)
     for i in range(m):
-        # each pair's contact at the other end of the interval, solved from its own solution where it is missing
+        # round 0: each pair's contact at the other end of the interval, solved from its own solution where it is
+        # missing; then the trials of regula falsi, both pairs at one rotation (one call site of _te_one: inlined)
         t_ahi, t_blo = ta_hi[i], tb_lo[i]
-        if not math.isfinite(t_ahi):
-            t_ahi = _te_one(iv, fv, p1, p2, mp1, mp2, junction, d, M2, hi[i], pa[i], ka[i], xa[i], xn)
-        if not math.isfinite(t_blo):
-            t_blo = _te_one(iv, fv, p1, p2, mp1, mp2, junction, d, M2, lo[i], pb[i], kb[i], xb[i], xn)
-        d_lo = np.empty(1)
-        d_hi = np.empty(1)
-        bl, bh = np.empty(1), np.empty(1)
-        d_lo[0] = t_blo - te_a_lo[i]
-        d_hi[0] = te_b_hi[i] - t_ahi
-        bl[0], bh[0] = lo[i], hi[i]
-        s0 = 0 if d_lo[0] == 0.0 else (1 if d_lo[0] > 0.0 else -1)
-        s1 = 0 if d_hi[0] == 0.0 else (1 if d_hi[0] > 0.0 else -1)
-        cross = np.empty(1, np.bool_)
-        cross[0] = math.isfinite(d_lo[0]) and math.isfinite(d_hi[0]) and s0 != s1
-        side = np.zeros(1, np.int64)
-        pt, tt = np.empty(1), np.empty(1)
-        pt[0] = 0.5 * (lo[i] + hi[i])
-        tt[0] = math.nan
-        for _ in range(iv[ITERATIONS]):
-            if not cross[0]:
-                break
-            p = _propose(bl[0], bh[0], d_lo[0], d_hi[0])
-            ta = _te_one(iv, fv, p1, p2, mp1, mp2, junction, d, M2, p, pa[i], ka[i], xa[i], xn)
-            tb = _te_one(iv, fv, p1, p2, mp1, mp2, junction, d, M2, p, pb[i], kb[i], xb[i], xm)
-            if _accept(0, p, ta, tb, bl, bh, d_lo, d_hi, side, pt, tt, cross):
+        use[0], use[1] = not math.isfinite(t_ahi), not math.isfinite(t_blo)
+        phis[0], phis[1] = hi[i], lo[i]
+        p = 0.0
+        for it in range(iv[ITERATIONS] + 1):
+            if it > 0:
+                if not cross[0]:
+                    break
+                p = _propose(bl[0], bh[0], d_lo[0], d_hi[0])
+                phis[0], phis[1] = p, p
+                use[0], use[1] = True, True
+            for w in range(2):
+                if use[w]:
+                    t[w] = _te_one(iv, fv, p1, p2, mp1, mp2, junction, d, M2, phis[w], pa[i] if w == 0 else pb[i],
+                                   ka[i] if w == 0 else kb[i], xa[i] if w == 0 else xb[i], xo[w])
+            if it == 0:
+                if use[0]:
+                    t_ahi = t[0]
+                if use[1]:
+                    t_blo = t[1]
+                d_lo[0] = t_blo - te_a_lo[i]
+                d_hi[0] = te_b_hi[i] - t_ahi
+                bl[0], bh[0] = lo[i], hi[i]
+                s0 = 0 if d_lo[0] == 0.0 else (1 if d_lo[0] > 0.0 else -1)
+                s1 = 0 if d_hi[0] == 0.0 else (1 if d_hi[0] > 0.0 else -1)
+                cross[0] = math.isfinite(d_lo[0]) and math.isfinite(d_hi[0]) and s0 != s1
+                side[0] = 0
+                pt[0] = 0.5 * (lo[i] + hi[i])
+                tt[0] = math.nan
+            elif _accept(0, p, t[0], t[1], bl, bh, d_lo, d_hi, side, pt, tt, cross):
                 for j in range(5):
-                    xa[i, j] = xn[j]
-                    xb[i, j] = xm[j]
+                    xa[i, j] = xo[0, j]
+                    xb[i, j] = xo[1, j]
         phi_t[i], te_t[i] = pt[0], tt[0]

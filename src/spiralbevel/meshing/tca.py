@@ -28,7 +28,10 @@ residual (continuation nodes after two); the generated flanks give analytic deri
 :mod:`spiralbevel._core.tca_edge`; the screen and acceptance of their solutions,
 :mod:`spiralbevel._core.tca_edge_screen`, which solves and screens each batch in one call), the path predictor
 (:mod:`spiralbevel._core.tca_predict`), the line-contact test and the transfer iteration
-(:mod:`spiralbevel._core.tca_transfer`) are compiled as well; what remains in Python is the orchestration below.
+(:mod:`spiralbevel._core.tca_transfer`: regula falsi with each trial's surface and edge Newton in one call) are
+compiled as well, and so is the continuation for flanks with compiled jets (its levels, predictors, Newton solves and
+tangents in one call, :func:`spiralbevel._core.tca_solve.continuation_jets`); what remains in Python is the
+orchestration below.
 """
 
 from __future__ import annotations
@@ -83,6 +86,10 @@ def _predict(o, nodes, X, Xp):
     _p.predict(np.ascontiguousarray(o, float), np.ascontiguousarray(nodes, float), np.ascontiguousarray(X, float),
                np.ascontiguousarray(Xp, float), out)
     return out
+
+
+#: Newton iterations at most of a continuation node (ContactProblem.newton's default)
+_MAX_ITER = 30
 
 
 def _continuation(prob, x_mean, xp0, phi1_mean, o_lo, o_hi, step, tol):
@@ -147,9 +154,6 @@ def _continuation(prob, x_mean, xp0, phi1_mean, o_lo, o_hi, step, tol):
     return (np.array(keys, float) * step, np.array([nodes[k][0] for k in keys]),
             np.array([nodes[k][1] for k in keys]), (fail[-1], fail[1]))
 
-
-#: Newton iterations at most of a continuation node (ContactProblem.newton's default)
-_MAX_ITER = 30
 
 #: all positions x pairs start from interpolated path points, where Newton halves the residual at every iteration;
 #: a system that fails to do so has no solution near its start (beyond the end of the path)
