@@ -8,6 +8,8 @@ n_q0, n_q1) in the member frame (:func:`spiralbevel._core.tca_batch.stack_state`
 * :func:`assemble` -- F (k,) and J (k, 5) of one system (k = 6 with an anchor equation x_j = value);
 * the Newton step :func:`spiralbevel._core.tca_step.step` (LU where a determinant bound proves the system regular,
   else the minimum-norm SVD step);
+* :func:`newton_one` -- the same iteration on one system, for the compiled stages that solve systems one by one
+  (:func:`continuation`, :func:`spiralbevel._core.tca_transfer.transfer_points`);
 * the batched iteration (:func:`start`, :func:`propose`, :func:`accept`): ``propose`` gives the trial points of the
   active systems, the surfaces are evaluated there and the systems assembled, ``accept`` applies the rules: a trial
   that leaves the surfaces (non-finite F or J) is retried with the step halved, up to ``halvings`` times; a system
@@ -352,12 +354,12 @@ def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q
 
     Parameters
     ----------
-    iv : (11,) int64
+    iv : (11,) int64 (13 for ``CONTINUE``)
         ``MODE``; the jets ``KIND1``, ``KIND2`` of pinion and gear (:mod:`spiralbevel._core.jets`); ``HAVE_E`` (0: fill
         the basis rows ``E`` from the gear normal at x); the anchor row ``AJ`` (< 0: none); ``MAX_ITER``,
         ``PATIENCE``, ``HALVINGS`` (module docstring); written back: ``C`` the number of trial points ``xn[:C]``
         (systems ``idx[:C]``) to evaluate, ``IT`` the iterations so far, ``N_ACTIVE`` the systems still iterating.
-    fv : (3,) float
+    fv : (3,) float (7 for ``CONTINUE``)
         ``SCALE`` L (mm), ``TOL`` (mm on max|F|; the s_min / s_max threshold for ``SINGULAR``), ``RCOND``.
     p1, p2 : (k,) float
         Jet parameters of pinion and gear (``JETS``).
@@ -381,8 +383,13 @@ def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q
     ``STEP``: ``dx`` = the step of every system ``J, F``. ``TANGENT``: ``dx`` = the path tangent dx/dphi1 =
     -J^+ dF/dphi1 from ``J`` and ``S1f`` (a1 = +z: a1 x v = (-v_y, v_x, 0); extra rows of J get dF/dphi1 = 0).
     ``SINGULAR``: ``active`` = whether s_min / s_max of the column-equilibrated J is below ``TOL``
-    (:func:`spiralbevel._core.tca_solve.singular_batch`). Arrays a mode does not use may be empty; so may the work
-    arrays of ``JETS`` (``xn`` to ``TQ``, ``dx``, ``best``, ``stall``, ``halved``, ``idx``, ``active``, ``acc``).
+    (:func:`spiralbevel._core.tca_solve.singular_batch`). ``CONTINUE``: the continuation of the path of contact
+    (:func:`continuation`) from the mean point in row ``iv[NEED_LO]`` of ``x`` (its tangent in that row of ``dx``)
+    out to ``iv[NEED_LO]`` steps ``fv[H]`` (rad) below ``fv[PHI1_MEAN]`` and ``iv[NEED_HI]`` above: the nodes and
+    tangents in the first ``iv[C]`` rows of ``x``, ``dx``, their offsets in ``res``, the offsets of the first failed
+    node below and above in ``fv[FAIL]``, ``fv[FAIL + 1]`` (:func:`spiralbevel._core.tca_solve.continuation_jets`).
+    Arrays a mode does not use may be empty; so may the work arrays of ``JETS`` (``xn`` to ``TQ``, ``dx``,
+    ``best``, ``stall``, ``halved``, ``idx``, ``active``, ``acc``).
     """
     mode = iv[MODE]
     L, tol, rcond = fv[SCALE], fv[TOL], fv[RCOND]
