@@ -6,9 +6,11 @@ Targets: under 50 ms (met); 1 ms for the face-milled pair (not met). Compiled: t
 of both flank kinds and of the crowned flank (quadratic normal deviation), the edge-contact Newton (analytic Jacobian,
 compiled boundary margins), solved together with the margins, TE, flank tests (with the generated flanks' limit-line
 test), screen and acceptance of its solutions in one call per batch, corners of the pinion's fillet junction that a
-proof excludes not solved, the surface contacts' flank test, the path predictor, the line-contact test, the
-transfer-point iteration and the contact geometry of the ellipses (poses, Weingarten tensors, relative curvatures); what
-is left is the Python orchestration between them (continuation, edge candidates, transfer brackets, TE and statuses:
+proof excludes not solved, the surface contacts' flank test, the path predictor, the line-contact test, the contact
+geometry of the ellipses (poses, Weingarten tensors, relative curvatures), the continuation of the path of contact (its
+levels, predictors, Newton solves and tangents in one call) and the transfer-point iteration (regula falsi with the
+surface and edge Newton of each trial inside the kernel, one call per TCA); what is left is the Python orchestration
+between them (mean point, edge candidates, TE and statuses, the edge contacts' surface data, the ellipses' arguments:
 numpy calls on small arrays) and the fixed cost of each compiled call.
 
 Cases: the crowned log-spiral pair (point contact), the exactly conjugate log-spiral pair (line contact) and the

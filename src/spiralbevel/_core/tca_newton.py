@@ -8,6 +8,8 @@ n_q0, n_q1) in the member frame (:func:`spiralbevel._core.tca_batch.stack_state`
 * :func:`assemble` -- F (k,) and J (k, 5) of one system (k = 6 with an anchor equation x_j = value);
 * the Newton step :func:`spiralbevel._core.tca_step.step` (LU where a determinant bound proves the system regular,
   else the minimum-norm SVD step);
+* :func:`newton_one` -- the same iteration on one system, for the compiled stages that solve systems one by one
+  (:func:`continuation`, :func:`spiralbevel._core.tca_transfer.transfer_points`);
 * the batched iteration (:func:`start`, :func:`propose`, :func:`accept`): ``propose`` gives the trial points of the
   active systems, the surfaces are evaluated there and the systems assembled, ``accept`` applies the rules: a trial
   that leaves the surfaces (non-finite F or J) is retried with the step halved, up to ``halvings`` times; a system
@@ -38,9 +40,10 @@ import numpy as np
 from .jets import surface_jet
 from .jit import kernel
 from .linalg import copy1, copy2
+from .tca_predict import predict
 from .tca_step import all_finite, max_abs, singular_rows, step
 
-__all__ = ["assemble", "basis_rows", "step", "start", "propose", "accept", "newton_batch"]
+__all__ = ["assemble", "basis_rows", "step", "start", "propose", "accept", "newton_batch", "newton_one"]
 
 @kernel(inline="always")   # one call site: newton_batch
 def basis_rows(S2, c2, s2, M2, E):
@@ -170,12 +173,178 @@ def accept(idx, c, xn, Fn, Jn, x, F, J, dx, res, best, stall, halved, active, to
     return count
 
 
+@kernel   # a kernel of its own, called from newton_batch (CONTINUE) and tca_transfer.transfer_points: typed once
+def newton_one(kind1, p1, kind2, p2, c1, s1, x, d, M2, L, tol, max_iter, rcond, patience, halvings, F, J, S1f, E):
+    """The iteration of :func:`newton_batch` (``JETS``, basis rows ``E (2, 3)`` from the gear normal at the start, no
+    anchor) on one system, ``x (5,)`` updated in place, its system ``F (5,)``, ``J (5, 5)`` and fixed-frame pinion
+    data ``S1f (3, 6)`` at the final iterate written; returns whether it converged (max|F| < tol). The same rules
+    and arithmetic in the same order as the batch, whose systems are independent: the same iterates."""
+    S1, S2, Q = np.empty((3, 6)), np.empty((3, 6)), np.empty((6, 6))
+    T1, T2, T1f, TQ = np.empty((3, 6)), np.empty((3, 6)), np.empty((3, 6)), np.empty((6, 6))
+    Fn, Jn = np.empty(5), np.empty((5, 5))
+    dx, xn = np.zeros(5), np.empty(5)
+    aj = np.int64(-1)
+    surface_jet(kind1, p1, x[0], x[1], S1)
+    surface_jet(kind2, p2, x[2], x[3], S2)
+    basis_rows(S2, math.cos(x[4]), math.sin(x[4]), M2, E)
+    assemble(S1, S2, c1, s1, x, d, M2, L, E, aj, 0.0, F, J, S1f, Q)
+    ok = all_finite(F) and all_finite(J)
+    res = max_abs(F) if ok else math.inf
+    best = res
+    stall, halved = 0, 0
+    active = ok and res >= tol
+    it = 0
+    while it < max_iter and active:
+        it += 1
+        if halved == 0:
+            step(J, F, rcond, dx)
+        for j in range(5):
+            xn[j] = x[j] + dx[j]
+        surface_jet(kind1, p1, xn[0], xn[1], T1)
+        surface_jet(kind2, p2, xn[2], xn[3], T2)
+        assemble(T1, T2, c1, s1, xn, d, M2, L, E, aj, 0.0, Fn, Jn, T1f, TQ)
+        fin = all_finite(Fn) and all_finite(Jn)
+        if not fin and halved < halvings:
+            for j in range(5):
+                dx[j] *= 0.5
+            halved += 1
+            continue
+        copy1(x, xn)
+        copy1(F, Fn)
+        copy2(J, Jn)
+        copy2(S1f, T1f)
+        halved = 0
+        r = max_abs(Fn) if fin else math.inf
+        res = r
+        better = r < 0.5 * best
+        best = min(best, r)
+        stall = 0 if better else stall + 1
+        active = r < math.inf and r >= tol and stall < patience
+    return res < tol
+
+
+@kernel(inline="always")   # two call sites in newton_batch (TANGENT, CONTINUE)
+def tangent(J, S1f, E, L, rcond, Fp, dx):
+    """Path tangent ``dx (5,)`` = -J^+ dF/dphi1 of one system ``J (k, 5)`` from its fixed-frame pinion data
+    ``S1f (3, 6)`` and basis rows ``E (2, 3)`` (a1 = +z: a1 x v = (-v_y, v_x, 0); extra rows of J get dF/dphi1 = 0,
+    ``Fp (k,)`` is scratch with those entries 0)."""
+    Fp[0] = -S1f[1, 0]
+    Fp[1] = S1f[0, 0]
+    Fp[2] = 0.0
+    nx, ny = -S1f[1, 1], S1f[0, 1]
+    for a in range(2):
+        Fp[3 + a] = L * (E[a, 0] * nx + E[a, 1] * ny)
+    step(J, Fp, rcond, dx)
+
+
+@kernel(inline="always")   # one call site: newton_batch (CONTINUE)
+def continuation(kind1, p1, kind2, p2, d, M2, L, tol, max_iter, rcond, patience, halvings, phi1_mean, h, need_hi,
+                 need_lo, X, Xp, off, fail):
+    """Nodes of the solution path from the mean point out to ``need_hi`` steps ``h`` (rad) above ``phi1_mean`` and
+    ``need_lo`` below (the rules of ``meshing.tca._continuation``, in its operation order): level 1 solves the nodes
+    +-h from the tangent predictor; each further level advances every side by up to two steps at once, predicted by
+    the quintic Hermite polynomial through the side's last three nodes (:func:`spiralbevel._core.tca_predict.predict`)
+    or linearly from its last node where it has two; the path tangent at a node comes from the Jacobian of its last
+    Newton iteration (:func:`tangent`). A side ends at its first node that does not converge (or has no finite
+    tangent): its offset goes to ``fail (2,)`` (below, above; -inf, inf where none failed).
+
+    ``X``, ``Xp (need_lo + need_hi + 1, 5)`` hold the mean point and its tangent in row ``need_lo`` on entry and the
+    nodes (sorted) in their first rows on return, ``off`` their offsets (rad); returns the number of nodes."""
+    K = X.shape[0]
+    have = np.zeros(K, np.bool_)
+    have[need_lo] = True
+    last = np.zeros(2, np.int64)   # per side (0: up, 1: down), the last node's step index
+    alive = np.zeros(2, np.bool_)
+    alive[0], alive[1] = need_hi > 0, need_lo > 0
+    fail[0], fail[1] = -math.inf, math.inf
+    idx = np.empty(4, np.int64)
+    G = np.empty((4, 5))
+    good = np.zeros(4, np.bool_)
+    T = np.empty((4, 5))
+    nodes, Xk, Xpk = np.empty(3), np.empty((3, 5)), np.empty((3, 5))
+    F, J, S1f, E, Fp = np.empty(5), np.empty((5, 5)), np.empty((3, 6)), np.empty((2, 3)), np.zeros(5)
+    while alive[0] or alive[1]:
+        cnt = 0
+        for side in range(2):
+            if not alive[side]:
+                continue
+            dd = 1 if side == 0 else -1
+            need = need_hi if side == 0 else need_lo
+            j0 = last[side]
+            if j0 == 0:
+                idx[cnt] = dd
+                for k in range(5):
+                    G[cnt, k] = X[need_lo, k] + dd * h * Xp[need_lo, k]
+                cnt += 1
+                continue
+            nn = 0
+            for mm in range(1, 3):
+                if abs(j0) + mm <= need:
+                    idx[cnt + nn] = j0 + dd * mm
+                    nn += 1
+            jb = j0 - 2 * dd
+            if -need_lo <= jb <= need_hi and have[jb + need_lo]:   # the quintic through the side's three nodes
+                for t in range(3):
+                    j = j0 + (t if dd < 0 else t - 2)   # sorted: j0 - 2, j0 - 1, j0 (up) or j0, j0 + 1, j0 + 2
+                    nodes[t] = j * h
+                    for k in range(5):
+                        Xk[t, k] = X[j + need_lo, k]
+                        Xpk[t, k] = Xp[j + need_lo, k]
+                o, out = np.empty(nn), np.empty((nn, 5))
+                for t in range(nn):
+                    o[t] = idx[cnt + t] * h
+                predict(o, nodes, Xk, Xpk, out)
+                for t in range(nn):
+                    for k in range(5):
+                        G[cnt + t, k] = out[t, k]
+            else:
+                for t in range(nn):
+                    for k in range(5):
+                        G[cnt + t, k] = X[j0 + need_lo, k] + (idx[cnt + t] - j0) * h * Xp[j0 + need_lo, k]
+            cnt += nn
+        for t in range(cnt):
+            # a node within reach converges quadratically from its predictor; two iterations without halving the
+            # residual mean the path has ended there
+            phi = phi1_mean + idx[t] * h
+            conv = newton_one(kind1, p1, kind2, p2, math.cos(phi), math.sin(phi), G[t], d, M2, L, tol, max_iter,
+                              rcond, patience, halvings, F, J, S1f, E)
+            tangent(J, S1f, E, L, rcond, Fp, T[t])
+            good[t] = conv and all_finite(T[t])
+        for side in range(2):
+            if not alive[side]:
+                continue
+            dd = 1 if side == 0 else -1
+            for t in range(cnt):   # in the order of |index|
+                if (idx[t] > 0) != (dd > 0):
+                    continue
+                if not good[t]:
+                    alive[side] = False
+                    fail[side ^ 1] = idx[t] * h
+                    break
+                r = idx[t] + need_lo
+                for k in range(5):
+                    X[r, k] = G[t, k]
+                    Xp[r, k] = T[t, k]
+                have[r] = True
+                last[side] = idx[t]
+            if abs(last[side]) >= (need_hi if side == 0 else need_lo):
+                alive[side] = False
+    first = last[1] + need_lo
+    count = last[0] - last[1] + 1
+    for r in range(count):
+        off[r] = (last[1] + r) * h
+        for k in range(5):
+            X[r, k] = X[first + r, k]
+            Xp[r, k] = Xp[first + r, k]
+    return count
+
+
 # operations of newton_batch (iv[MODE])
-JETS, BEGIN, ADVANCE, START, ACCEPT, STEP, TANGENT, SINGULAR = range(8)
-# entries of its integer vector iv; ``C``, ``IT``, ``N_ACTIVE`` are written back
-MODE, KIND1, KIND2, HAVE_E, AJ, MAX_ITER, PATIENCE, HALVINGS, C, IT, N_ACTIVE = range(11)
-# entries of its float vector fv
-SCALE, TOL, RCOND = range(3)
+JETS, BEGIN, ADVANCE, START, ACCEPT, STEP, TANGENT, SINGULAR, CONTINUE = range(9)
+# entries of its integer vector iv; ``C``, ``IT``, ``N_ACTIVE`` are written back; ``NEED_HI``, ``NEED_LO``: CONTINUE
+MODE, KIND1, KIND2, HAVE_E, AJ, MAX_ITER, PATIENCE, HALVINGS, C, IT, N_ACTIVE, NEED_HI, NEED_LO = range(13)
+# entries of its float vector fv (``PHI1_MEAN``, ``H`` and the written-back ``FAIL``: CONTINUE)
+SCALE, TOL, RCOND, PHI1_MEAN, H, FAIL = range(6)
 
 
 @kernel
@@ -185,12 +354,12 @@ def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q
 
     Parameters
     ----------
-    iv : (11,) int64
+    iv : (11,) int64 (13 for ``CONTINUE``)
         ``MODE``; the jets ``KIND1``, ``KIND2`` of pinion and gear (:mod:`spiralbevel._core.jets`); ``HAVE_E`` (0: fill
         the basis rows ``E`` from the gear normal at x); the anchor row ``AJ`` (< 0: none); ``MAX_ITER``,
         ``PATIENCE``, ``HALVINGS`` (module docstring); written back: ``C`` the number of trial points ``xn[:C]``
         (systems ``idx[:C]``) to evaluate, ``IT`` the iterations so far, ``N_ACTIVE`` the systems still iterating.
-    fv : (3,) float
+    fv : (3,) float (7 for ``CONTINUE``)
         ``SCALE`` L (mm), ``TOL`` (mm on max|F|; the s_min / s_max threshold for ``SINGULAR``), ``RCOND``.
     p1, p2 : (k,) float
         Jet parameters of pinion and gear (``JETS``).
@@ -214,8 +383,13 @@ def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q
     ``STEP``: ``dx`` = the step of every system ``J, F``. ``TANGENT``: ``dx`` = the path tangent dx/dphi1 =
     -J^+ dF/dphi1 from ``J`` and ``S1f`` (a1 = +z: a1 x v = (-v_y, v_x, 0); extra rows of J get dF/dphi1 = 0).
     ``SINGULAR``: ``active`` = whether s_min / s_max of the column-equilibrated J is below ``TOL``
-    (:func:`spiralbevel._core.tca_solve.singular_batch`). Arrays a mode does not use may be empty; so may the work
-    arrays of ``JETS`` (``xn`` to ``TQ``, ``dx``, ``best``, ``stall``, ``halved``, ``idx``, ``active``, ``acc``).
+    (:func:`spiralbevel._core.tca_solve.singular_batch`). ``CONTINUE``: the continuation of the path of contact
+    (:func:`continuation`) from the mean point in row ``iv[NEED_LO]`` of ``x`` (its tangent in that row of ``dx``)
+    out to ``iv[NEED_LO]`` steps ``fv[H]`` (rad) below ``fv[PHI1_MEAN]`` and ``iv[NEED_HI]`` above: the nodes and
+    tangents in the first ``iv[C]`` rows of ``x``, ``dx``, their offsets in ``res``, the offsets of the first failed
+    node below and above in ``fv[FAIL]``, ``fv[FAIL + 1]`` (:func:`spiralbevel._core.tca_solve.continuation_jets`).
+    Arrays a mode does not use may be empty; so may the work arrays of ``JETS`` (``xn`` to ``TQ``, ``dx``,
+    ``best``, ``stall``, ``halved``, ``idx``, ``active``, ``acc``).
     """
     mode = iv[MODE]
     L, tol, rcond = fv[SCALE], fv[TOL], fv[RCOND]
@@ -224,19 +398,16 @@ def newton_batch(iv, fv, p1, p2, c1, s1, aval, d, M2, x, E, F, J, S1, S2, S1f, Q
             step(J[i], F[i], rcond, dx[i])
         return
     if mode == TANGENT:
-        k = J.shape[1]
-        Fp = np.zeros(k)
+        Fp = np.zeros(J.shape[1])
         for i in range(J.shape[0]):
-            Fp[0] = -S1f[i, 1, 0]
-            Fp[1] = S1f[i, 0, 0]
-            Fp[2] = 0.0
-            nx, ny = -S1f[i, 1, 1], S1f[i, 0, 1]
-            for a in range(2):
-                Fp[3 + a] = L * (E[i, a, 0] * nx + E[i, a, 1] * ny)
-            step(J[i], Fp, rcond, dx[i])
+            tangent(J[i], S1f[i], E[i], L, rcond, Fp, dx[i])
         return
     if mode == SINGULAR:
         singular_rows(J, tol, active)
+        return
+    if mode == CONTINUE:
+        iv[C] = continuation(iv[KIND1], p1, iv[KIND2], p2, d, M2, L, tol, iv[MAX_ITER], rcond, iv[PATIENCE],
+                             iv[HALVINGS], fv[PHI1_MEAN], fv[H], iv[NEED_HI], iv[NEED_LO], x, dx, res, fv[FAIL:])
         return
     kind1, kind2, aj = iv[KIND1], iv[KIND2], iv[AJ]
     max_iter, patience, halvings = iv[MAX_ITER], iv[PATIENCE], iv[HALVINGS]

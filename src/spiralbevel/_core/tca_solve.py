@@ -3,6 +3,8 @@ an operation and makes one call of the one kernel :func:`spiralbevel._core.tca_n
 
 * :func:`newton_jets` -- the whole batched iteration in compiled code for surfaces with compiled jets
   (:mod:`spiralbevel._core.jets`);
+* :func:`continuation_jets` -- the continuation of TCA's path of contact (its nodes and tangents) in one call for
+  such surfaces;
 * :class:`Iteration` -- the same iteration as reverse communication for surfaces without one: the caller evaluates
   the surfaces at the trial points (by numpy, :meth:`spiralbevel.meshing.contact_problem.ContactProblem.newton`);
 * :func:`step_batch`, :func:`tangent_batch`, :func:`singular_batch` -- the Newton step
@@ -16,9 +18,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .tca_newton import ACCEPT, ADVANCE, BEGIN, HAVE_E, IT, JETS, MODE, SINGULAR, START, STEP, TANGENT, C, newton_batch
+from .tca_newton import (ACCEPT, ADVANCE, BEGIN, CONTINUE, FAIL, HAVE_E, IT, JETS, MODE, SINGULAR, START, STEP,
+                         TANGENT, C, newton_batch)
 
-__all__ = ["newton_jets", "Iteration", "step_batch", "tangent_batch", "singular_batch"]
+__all__ = ["newton_jets", "continuation_jets", "Iteration", "step_batch", "tangent_batch", "singular_batch"]
 
 
 _F1, _F2, _F3 = np.empty(0), np.empty((0, 0)), np.empty((0, 0, 0))
@@ -102,6 +105,32 @@ def newton_jets(kind1, p1, kind2, p2, c1, s1, x0, E, have_E, d, M2, L, aj, aval,
     a[_POS["res"]] = res = np.empty(M)
     newton_batch(*a)
     return a[_X], F, J, res, S1, S2, S1f, Q, int(a[0][IT])
+
+
+def continuation_jets(kind1, p1, kind2, p2, x_mean, xp0, d, M2, L, phi1_mean, h, need_lo, need_hi, tol, max_iter,
+                      rcond, patience, halvings):
+    """Nodes of the path of contact from the mean point ``x_mean (5,)`` with tangent ``xp0 (5,)`` out to ``need_lo``
+    steps ``h`` (rad) below ``phi1_mean`` and ``need_hi`` above, for two surfaces with compiled jets
+    (:func:`spiralbevel._core.tca_newton.continuation`; the other arguments as :func:`newton_jets`).
+
+    Returns
+    -------
+    offsets (c,) rad, X (c, 5), Xp (c, 5), (fail_lo, fail_hi)
+        The nodes (sorted offsets from phi1_mean, solutions, tangents dx/dphi1) and the offsets of the first node that
+        could not be reached below and above (-inf, inf where none failed).
+    """
+    need_lo, need_hi = max(int(need_lo), 0), max(int(need_hi), 0)
+    K = need_lo + need_hi + 1
+    a = list(_TEMPLATE)
+    a[0] = np.array((CONTINUE, kind1, kind2, 0, -1, max_iter, patience, halvings, 0, 0, 0, need_hi, need_lo), np.int64)
+    a[1] = np.array((L, tol, rcond, phi1_mean, h, 0.0, 0.0), np.float64)
+    a[_P1], a[_P2], a[_D], a[_M2] = _arr(p1), _arr(p2), _arr(d), _arr(M2)
+    X, Xp, off = np.empty((K, 5)), np.empty((K, 5)), np.empty(K)
+    X[need_lo], Xp[need_lo] = x_mean, xp0
+    a[_X], a[_DX], a[_POS["res"]] = X, Xp, off
+    newton_batch(*a)
+    c = int(a[0][C])
+    return off[:c], X[:c], Xp[:c], (float(a[1][FAIL]), float(a[1][FAIL + 1]))
 
 
 class Iteration:

@@ -28,7 +28,10 @@ residual (continuation nodes after two); the generated flanks give analytic deri
 :mod:`spiralbevel._core.tca_edge`; the screen and acceptance of their solutions,
 :mod:`spiralbevel._core.tca_edge_screen`, which solves and screens each batch in one call), the path predictor
 (:mod:`spiralbevel._core.tca_predict`), the line-contact test and the transfer iteration
-(:mod:`spiralbevel._core.tca_transfer`) are compiled as well; what remains in Python is the orchestration below.
+(:mod:`spiralbevel._core.tca_transfer`: regula falsi with each trial's surface and edge Newton in one call) are
+compiled as well, and so is the continuation for flanks with compiled jets (its levels, predictors, Newton solves and
+tangents in one call, :func:`spiralbevel._core.tca_solve.continuation_jets`); what remains in Python is the
+orchestration below.
 """
 
 from __future__ import annotations
@@ -41,8 +44,9 @@ from .._core import tca as _k
 from .._core import tca_batch as _b
 from .._core import tca_ellipse as _e
 from .._core import tca_predict as _p
+from .._core import tca_solve as _n
 from ..errors import DesignError, NoContactError, Problem
-from .contact_problem import ContactProblem
+from .contact_problem import _HALVINGS, _RCOND, ContactProblem
 from .contact_surface import surface_derivatives
 from .tca_edge import edge_stage
 from .tca_edge_solve import flank_contains
@@ -84,16 +88,26 @@ def _predict(o, nodes, X, Xp):
     return out
 
 
+#: Newton iterations at most of a continuation node (ContactProblem.newton's default)
+_MAX_ITER = 30
+
+
 def _continuation(prob, x_mean, xp0, phi1_mean, o_lo, o_hi, step, tol):
     """Nodes (sorted offsets, X, X') of the solution path from the mean point out to [o_lo, o_hi], and the offsets
     (lo, hi) of the first node that could not be reached on each side (-inf, inf when none failed).
 
     Level 1 solves the nodes +-step from the tangent predictor; each further level advances every side by up to two
     steps at once, predicted by the quintic Hermite polynomial through that side's last three nodes. The path
-    tangent at a node comes from the Jacobian of its last Newton iteration.
+    tangent at a node comes from the Jacobian of its last Newton iteration. For surfaces with compiled jets the
+    same rules run in one compiled call (:func:`spiralbevel._core.tca_solve.continuation_jets`).
     """
-    nodes = {0: (x_mean, xp0)}  # integer step index -> (x, x')
     need = {1: int(np.ceil(o_hi / step - 1e-9)), -1: int(np.ceil(-o_lo / step - 1e-9))}
+    if prob._jets is not None:   # the same rules in one compiled call
+        (k1, p1), (k2, p2) = prob._jets
+        d, M2, L = prob._const
+        return _n.continuation_jets(k1, p1, k2, p2, x_mean, xp0, d, M2, L, phi1_mean, step, need[-1], need[1], tol,
+                                    _MAX_ITER, _RCOND, 2, _HALVINGS)
+    nodes = {0: (x_mean, xp0)}  # integer step index -> (x, x')
     last = {1: 0, -1: 0}
     alive = {d: need[d] > 0 for d in (1, -1)}
     fail = {1: np.inf, -1: -np.inf}
@@ -389,7 +403,7 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         return drive * (-(prob.gear_angle(p2, k) - phi2_mean) - ratio * (phi - phi1_mean))
 
     transfers, transfer_te = exact_transfers(prob, phi1, sel, te2, x.reshape(n, P, 5), kinds, pairs, te_of_phi,
-                                             tol=tol, te_tie=te_tie)
+                                             tol=tol, te_tie=te_tie, te_frame=(drive, phi2_mean, phi1_mean))
 
     def rs(a, k=None):
         return a.reshape((n, P) + a.shape[1:])

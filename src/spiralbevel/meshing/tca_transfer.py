@@ -5,7 +5,8 @@ d(phi1) = TE_b(phi1) - TE_a(phi1), each TE from its own contact solved at that p
 Newton solver of :class:`~spiralbevel.meshing.contact_problem.ContactProblem`, an edge contact by
 :func:`~spiralbevel.meshing.tca_edge.solve_edge_contacts`), not interpolated between the positions. The root is
 bracketed by the two positions and found by the Illinois variant of regula falsi, all transfers of a cycle at once
-(its bookkeeping compiled: :mod:`spiralbevel._core.tca_transfer`).
+(compiled: :mod:`spiralbevel._core.tca_transfer`, the whole iteration with its contacts' Newton in one call
+where the surfaces have compiled jets, else its bookkeeping between the solves).
 The TE there is the envelope's local minimum (the kink where the curves cross), which a sampled envelope misses by
 O(spacing): it is reported with the transfer and enters the extremes of the TE curve.
 """
@@ -15,9 +16,19 @@ from __future__ import annotations
 import numpy as np
 
 from .._core import tca_transfer as _kt
+from .contact_problem import _HALVINGS, _RCOND
 from .tca_edge import solve_edge_contacts
+from .tca_edge_solve import _H_TAU, compiled_args, junction_samples
+from .tca_edge_solve import _RCOND as _RCOND_EDGE
 
 __all__ = ["exact_transfers"]
+
+#: Newton iterations at most of a contact (the defaults of ContactProblem.newton and solve_edge_contacts) and of
+#: regula falsi
+_MAX_ITER = 30
+_ITERATIONS = 40
+_EMPTY = np.zeros(0)
+_NO_JUNCTION = np.zeros((0, 3))
 
 
 def _te_at(prob, phi, pair_k, kind, x0, te_of_phi, tol):
@@ -42,7 +53,32 @@ def _te_at(prob, phi, pair_k, kind, x0, te_of_phi, tol):
     return te, x
 
 
-def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10, te_tie=1e-11, iterations=40):
+def _compiled(prob, ka, kb, tol, te_frame, iterations):
+    """Arguments of :func:`spiralbevel._core.tca_transfer.transfer_points` but the brackets' (iv, fv, p1, p2, mp1,
+    mp2, junction, d, M2), or None where the contacts are not all solved in compiled code (a surface without a
+    compiled jet; an edge contact of surfaces without compiled margins)."""
+    if prob._jets is None:
+        return None
+    (k1, p1), (k2, p2) = prob._jets
+    edge = np.concatenate([ka[ka >= 0], kb[kb >= 0]])
+    kinds, mp1, mp2, junction = np.zeros(6, np.int64), _EMPTY, _EMPTY, _NO_JUNCTION
+    if edge.size:
+        args = compiled_args(prob)
+        if args is None:
+            return None
+        kinds, _, mp1, _, mp2, _ = args
+        junction = junction_samples(prob, edge % 2, edge // 2)
+    iv = np.array([k1, kinds[1], kinds[2], k2, kinds[4], kinds[5], _MAX_ITER, _MAX_ITER, _HALVINGS, _MAX_ITER,
+                   iterations], np.int64)
+    drive, phi2_mean, phi1_mean = te_frame
+    fv = np.array([prob._const[2], tol, _RCOND, _RCOND_EDGE, _H_TAU, drive, phi2_mean, prob.ratio, phi1_mean, prob.z1,
+                   prob.z2], float)
+    d, M2, _ = prob._const
+    return iv, fv, p1, p2, mp1, mp2, junction, d, M2
+
+
+def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10, te_tie=1e-11, iterations=_ITERATIONS,
+                    te_frame=None):
     """Transfer points (rotations and TE) of a TCA cycle.
 
     Parameters
@@ -60,6 +96,10 @@ def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10
     pairs : (P,) int
     te_of_phi : callable
         ``te_of_phi(phi2_eff, k, phi1) -> TE`` (rad) for pair k at pinion rotation phi1.
+    te_frame : (drive, phi2_mean, phi1_mean), optional
+        The TE of ``te_of_phi`` as numbers, TE = drive (-(phi2 - phi2_mean) - ratio (phi1 - phi1_mean)) with phi2 the
+        gear rotation of the pair (rad): given, the whole iteration runs in one compiled call where every contact can
+        be solved in compiled code (:func:`spiralbevel._core.tca_transfer.transfer_points`).
 
     Returns
     -------
@@ -84,6 +124,15 @@ def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10
     ta_hi, tb_lo = te2[I + 1, A].copy(), te2[I, B].copy()
     xa, xb = x2[I, A].copy(), x2[I + 1, B].copy()
     ka, kb = kinds[I, A], kinds[I + 1, B]
+    fast = None if te_frame is None else _compiled(prob, ka, kb, tol, te_frame, iterations)
+    if fast is not None:   # the whole iteration in one compiled call
+        phi_t, te_t = np.empty(m), np.empty(m)
+        iv, fv, p1, p2, mp1, mp2, junction, d, M2 = fast
+        _kt.transfer_points(iv, fv, p1, p2, mp1, mp2, junction, d, M2, lo, hi, np.array(te2[I, A], float),
+                            np.array(te2[I + 1, B], float), ta_hi, tb_lo, xa, xb, np.array(ka, np.int64),
+                            np.array(kb, np.int64), np.array(pairs[A], np.int64), np.array(pairs[B], np.int64), phi_t,
+                            te_t)
+        return phi_t, te_t
     miss_a, miss_b = ~np.isfinite(ta_hi), ~np.isfinite(tb_lo)
     if miss_a.any() or miss_b.any():
         na = int(miss_a.sum())
