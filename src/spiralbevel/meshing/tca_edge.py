@@ -50,11 +50,12 @@ def _best_of_others(te):
 _MATE = {"top": ("fillet", "root"), "fillet": ("top",), "root": ("top",)}
 
 
-def _stage_ints(prob, names):
-    """The integer parameters of :func:`spiralbevel._core.tca_edge_stage.edge_stage_run` fixed by the problem (kept
-    on it): the end-of-generated-surface flags and the mate table of both members' boundaries (mode and iterations
-    are set per call)."""
-    ip = prob.__dict__.get("_edge_stage_ip")
+def _stage_ints(names):
+    """The integer parameters of :func:`spiralbevel._core.tca_edge_stage.edge_stage_run` fixed by the boundary names
+    of both members (kept per pair of name tuples): the end-of-generated-surface flags and the mate table of both
+    members' boundaries (mode, iterations and the junction flag are set per call)."""
+    key = (names[0], names[1])
+    ip = _STAGE_INTS.get(key)
     if ip is None:
         N = _kst.N_MARGINS
         ip = np.zeros(_kst.IP_SIZE, np.int64)
@@ -68,8 +69,11 @@ def _stage_ints(prob, names):
                     if other in names[1 - m]:
                         mates[m, e, t] = names[1 - m].index(other)
                         t += 1
-        prob._edge_stage_ip = ip
+        _STAGE_INTS[key] = ip
     return ip
+
+
+_STAGE_INTS: dict[tuple, np.ndarray] = {}
 
 
 def _label(names, k1, K, m, e):
@@ -91,7 +95,7 @@ def _stage_compiled(prob, fast, x, status, te_surface, phi1, pairs, tol, te_tie,
     d, M2, _ = prob._const
     fp = np.array([_H_TAU, tol, _RCOND, te_frame[0], te_frame[1], prob.ratio, te_frame[2], prob.z2, np.pi / prob.z2,
                    2 * np.pi / prob.z1, te_tie], float)
-    ip = _stage_ints(prob, names).copy()
+    ip = _stage_ints(names).copy()
     ip[0], ip[1] = 1, 30
     junction = junction_samples(prob, _I0, _I0)
     ip[2] = "_junction" not in prob.__dict__   # not computed yet: the stage stops where it needs them
