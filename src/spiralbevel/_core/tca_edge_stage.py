@@ -35,55 +35,6 @@ FP_SIZE = 11
 IP_SIZE = 3 + 2 * N_MARGINS + 4 * N_MARGINS
 
 
-@kernel
-def _crossed(mk, mp, q0, q1, S, g, dg, out):
-    """``out (N,)``: the point q of a member lies beyond each boundary (margin < 0 or NaN)."""
-    margins(mk, mp, q0, q1, S, g, dg)
-    for e in range(N_MARGINS):
-        out[e] = not g[e] >= 0.0
-
-
-@kernel
-def _append(bi, bj, bm, be, bx, bp, k, i, j, m, e, x0, parent):
-    """Row k of a batch (arrays grown by the caller): position i, pair index j, system (m, e), start x0 (5,)."""
-    bi[k] = i
-    bj[k] = j
-    bm[k] = m
-    be[k] = e
-    for c in range(5):
-        bx[k, c] = x0[c]
-    bp[k] = parent
-
-
-@kernel
-def _grow(bi, bj, bm, be, bx, bp, need):
-    """The row arrays with room for ``need`` rows (copies when they are too short)."""
-    cap = bi.shape[0]
-    if need <= cap:
-        return bi, bj, bm, be, bx, bp
-    c = max(need, 2 * cap)
-    ni, nj, nm, ne = (np.empty(c, np.int64), np.empty(c, np.int64), np.empty(c, np.int64),
-                      np.empty(c, np.int64))
-    nx, npr = np.empty((c, 5)), np.empty(c, np.int64)
-    for k in range(cap):
-        ni[k] = bi[k]
-        nj[k] = bj[k]
-        nm[k] = bm[k]
-        ne[k] = be[k]
-        npr[k] = bp[k]
-        for q in range(5):
-            nx[k, q] = bx[k, q]
-    return ni, nj, nm, ne, nx, npr
-
-
-@kernel
-def _propagate(new_p, parent, new_c, k):
-    """``new_p[parent] |= new_c`` over the k child rows with numpy's fancy-index semantics (of rows sharing a parent
-    the last one writes: ``new_p[parent[r]] = old new_p[parent[r]] | new_c[r]``)."""
-    old = new_p.copy()
-    for r in range(k):
-        new_p[parent[r]] = old[parent[r]] | new_c[r]
-
 
 @kernel
 def edge_stage_run(kinds, p1, mp1, p2, mp2, ctol, junction, d, M2, fp, ip, c1, s1, x, member, edge, conv, ndot,
@@ -114,7 +65,7 @@ def edge_stage_run(kinds, p1, mp1, p2, mp2, ctol, junction, d, M2, fp, ip, c1, s
     pairs : (P,) float
         Tooth pair numbers.
     floor : (n, P) float
-        Scratch (the march's floor of a solution's TE).
+        Scratch (the floor of a solution's TE, :func:`~spiralbevel._core.tca_edge_screen.accept`).
     te_edge, x_edge : (n, P) float, (n, P, 5) float
         Output: the edge contacts (NaN where none).
     lab : (n, P, 3) int
@@ -125,28 +76,142 @@ def edge_stage_run(kinds, p1, mp1, p2, mp2, ctol, junction, d, M2, fp, ip, c1, s
     """
     mode = ip[0]
     max_iter = ip[1]
-    T1, te_tie, ratio = fp[9], fp[10], fp[5]
+    T1 = fp[9]
     N = N_MARGINS
-    K = 2 * N
     n, P = status.shape
     info[0] = 0
-    # 1 (n, P) stage state
-    phys = np.zeros((n, P), np.bool_)
-    best = np.full((n, P), -math.inf)
+    phys = np.empty((n, P), np.bool_)
+    best = np.empty((n, P), np.float64)
     last = np.empty((n, P), np.int64)
-    lab_i = np.empty(n * P, np.int64)
-    lab_j = np.empty(n * P, np.int64)
-    nlab = 0
+    cand = np.empty((n, P), np.int64)
+    lorder = np.empty((2, n * P), np.int64)
+    front = np.empty((2, n * P), np.int64)
+    span = _stage_init(status, te_s, phi1, T1, phys, best, floor, te_edge, x_edge, lab)
+    # rows of the next batch: position, pair index, member, edge code, parent row; starts
+    cap = 2 * N * n * P + 1
+    R = np.empty((5, cap), np.int64)
+    RX = np.empty((cap, 5), np.float64)
+    # the new rows of the levels of a round (a batch and the corners it seeds, two levels deep) and their parents
+    new0 = np.empty(0, np.bool_)
+    new1 = np.empty(0, np.bool_)
+    new2 = np.empty(0, np.bool_)
+    par1 = np.empty(0, np.int64)
+    par2 = np.empty(0, np.int64)
+    top_i = np.empty(0, np.int64)
+    top_j = np.empty(0, np.int64)
+    phase = 0        # stage: 0 start, 1 candidates beyond a boundary, 2 seeds next to lost contacts, 3 march, 4 done
+    level = 3        # level of the next batch in its round (3: the round is done)
+    nlab = np.int64(0)
+    nb = 0
+    done = False
+    while True:
+        # ---- the next batch
+        if mode == 0:
+            if done:
+                break
+            done = True
+            k = x.shape[0]
+            rows = np.empty((5, 0), np.int64)
+            ri, rj, rm, re, rp, rx = rows[0], rows[1], member, edge, rows[4], x
+            cs = np.empty((2, k), np.float64)
+            for a in range(k):
+                cs[0, a] = c1[a]
+                cs[1, a] = s1[a]
+            screen_it = 0
+        else:
+            if level == 3:
+                # the round is done: new of the deeper levels into the top one; then the next round
+                if new2.shape[0]:
+                    _propagate(new1, par2, new2)
+                if new1.shape[0]:
+                    _propagate(new0, par1, new1)
+                new1 = np.empty(0, np.bool_)
+                new2 = np.empty(0, np.bool_)
+                nb = 0
+                while nb == 0 and phase < 4:
+                    if phase == 0:
+                        phase = 1
+                        nb = _rows_beyond(kinds, mp1, mp2, ip, fp, x, status, te_s, best, R, RX)
+                    elif phase == 1:
+                        phase = 2
+                        nb = _rows_lost(kinds, mp1, mp2, ip, fp, x, phys, lab, phi1, R, RX)
+                    else:
+                        if phase == 2:
+                            phase = 3
+                            nfront = _front_start(phys, te_s, fp, floor, te_edge, best, lorder, nlab, front)
+                        else:
+                            nfront = _front_next(new0, top_i, top_j, te_edge, best, cand, front)
+                        if nfront:
+                            nb = _rows_march(kinds, mp1, mp2, ip, fp, x, phys, lab, phi1, pairs, span, x_edge, front,
+                                             nfront, cand, R, RX)
+                        if nb == 0:
+                            phase = 4
+                if nb == 0:
+                    break
+                level = 0
+            k = nb
+            rows = np.empty((5, k), np.int64)
+            rx = np.empty((k, 5), np.float64)
+            _take(R, RX, rows, rx)
+            ri, rj, rm, re, rp = rows[0], rows[1], rows[2], rows[3], rows[4]
+            cs = np.empty((2, k), np.float64)
+            for a in range(k):
+                phi = phi1[ri[a]] + pairs[rj[a]] * T1
+                cs[0, a] = math.cos(phi)
+                cs[1, a] = math.sin(phi)
+            if ip[2] != 0 and _needs_junction(rm, re):
+                info[0] = 1
+                return
+            screen_it = 1
+        # ---- solve and screen it
+        G = np.empty((2, k, N), np.float64)
+        fo = np.empty((2, k), np.float64)
+        flags = np.empty((6, k), np.bool_)
+        codes = np.empty((4, k), np.int64)
+        solve_screen(kinds, p1, mp1, p2, mp2, ctol, junction, cs, rx, rm, re, d, M2, fp, max_iter, screen_it, phi1,
+                     pairs, ri, rj, floor, te_edge, x_edge, last, G, fo, flags, codes)
+        if mode == 0:
+            for a in range(k):
+                conv[a] = flags[0, a]
+                ndot[a] = fo[1, a]
+            continue
+        nlab = _labels(flags, rows, lab, lorder, nlab)
+        if level == 0:
+            new0 = flags[4].copy()
+            top_i = ri.copy()
+            top_j = rj.copy()
+        elif level == 1:
+            new1 = flags[4].copy()
+            par1 = rp.copy()
+        else:
+            new2 = flags[4].copy()
+            par2 = rp.copy()
+        nb = 0
+        if level < 2:
+            if 2 * N * k > R.shape[1]:
+                R = np.empty((5, 2 * N * k), np.int64)
+                RX = np.empty((2 * N * k, 5), np.float64)
+            nb = _children(ip, fp, rows, rx, G, fo, flags, best, te_edge, R, RX)
+        level = level + 1 if nb else 3
+
+
+@kernel
+def _stage_init(status, te_s, phi1, T1, phys, best, floor, te_edge, x_edge, lab):
+    """The stage's per-pair state: real contacts ``phys``, the largest TE of the real contacts of the other pairs
+    ``best`` (-inf for P = 1), ``floor`` -inf, no edge contact and no label. Returns 1 where the positions span one
+    pitch evenly (neighbours across the pairs: ``meshing/tca_edge.py``), else 0."""
+    n, P = status.shape
     for i in range(n):
         for j in range(P):
             phys[i, j] = status[i, j] == 0 or status[i, j] == 1
+            best[i, j] = -math.inf
             floor[i, j] = -math.inf
             te_edge[i, j] = math.nan
             for c in range(5):
                 x_edge[i, j, c] = math.nan
             for c in range(3):
                 lab[i, j, c] = -1
-        if P > 1:   # the largest TE of the real contacts of the other pairs
+        if P > 1:
             first = 0
             for j in range(P):
                 v = te_s[i, j] if phys[i, j] else -math.inf
@@ -162,319 +227,178 @@ def edge_stage_run(kinds, p1, mp1, p2, mp2, ctol, junction, d, M2, fp, ip, c1, s
                         second = v
             for j in range(P):
                 best[i, j] = second if j == first else top
-    span = False
+    span = 0
     if n > 1:
-        span = True
+        span = 1
         st = T1 / (n - 1)
         for i in range(n - 1):
             if not math.fabs((phi1[i + 1] - phi1[i]) - st) <= 1e-9 * st:
-                span = False
-    S = np.empty((3, 6))
-    g = np.empty(N)
-    dg = np.empty((N, 2))
-    cr = np.zeros((2, N), np.bool_)
-    x0 = np.empty(5)
-    # the rows of the current round (a batch and the corners it seeds, two levels deep) and of the next batch
-    cap = 8
-    bi, bj, bm, be = (np.empty(cap, np.int64), np.empty(cap, np.int64), np.empty(cap, np.int64),
-                      np.empty(cap, np.int64))
-    bx, bp = np.empty((cap, 5)), np.empty(cap, np.int64)
-    nb = 0
-    # new rows of the levels of a round, their parents, the top level's positions and pairs
-    new0, new1, new2 = np.zeros(0, np.bool_), np.zeros(0, np.bool_), np.zeros(0, np.bool_)
-    par1, par2 = np.zeros(0, np.int64), np.zeros(0, np.int64)
-    top_i, top_j, rp = np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64)
-    cand = np.full((n, P), -1, np.int64)
-    front_i, front_j = np.empty(n * P, np.int64), np.empty(n * P, np.int64)
-    nfront = 0
-    phase = 0        # stage: 0 start, 1 candidates beyond a boundary, 2 seeds next to lost contacts, 3 march
-    level = 3        # level of the next batch in its round (3: the round is done)
-    done = False
-    while True:
-        # ---- the next batch
-        if mode == 0:
-            if done:
-                break
-            done = True
-            ri, rj, rm, re, rx = np.zeros(0, np.int64), np.zeros(0, np.int64), member, edge, x
-            k = x.shape[0]
-            cs = np.empty((2, k))
-            for a in range(k):
-                cs[0, a] = c1[a]
-                cs[1, a] = s1[a]
-            screen_it = 0
-        else:
-            if level == 3:
-                # the round is done: new of the deeper levels into the top one
-                if new2.shape[0]:
-                    _propagate(new1, par2, new2, new2.shape[0])
-                if new1.shape[0]:
-                    _propagate(new0, par1, new1, new1.shape[0])
-                new1, new2 = np.zeros(0, np.bool_), np.zeros(0, np.bool_)
-                nb = 0
-                while nb == 0 and phase < 4:
-                    if phase == 0:
-                        # 1. pairs whose extended contact lies beyond a boundary (and does not trail the best real
-                        # contact of another pair): every boundary crossed and the boundary of the mate meeting it
-                        phase = 1
-                        for i in range(n):
-                            for j in range(P):
-                                if status[i, j] != 2 or te_s[i, j] < best[i, j] - te_tie:
-                                    continue
-                                r = i * P + j
-                                for m in range(2):
-                                    _crossed(kinds[1] if m == 0 else kinds[4], mp1 if m == 0 else mp2,
-                                             x[r, 2 * m], x[r, 2 * m + 1], S, g, dg, cr[m])
-                                for M in range(2):
-                                    for E in range(N):
-                                        want = False
-                                        for m in range(2):
-                                            for e in range(N):
-                                                if not cr[m, e] or ip[3 + m * N + e] != 0:
-                                                    continue
-                                                if m == M and e == E:
-                                                    want = True
-                                                elif m != M:
-                                                    for t in range(2):
-                                                        if ip[3 + 2 * N + (m * N + e) * 2 + t] == E:
-                                                            want = True
-                                        if want:
-                                            bi, bj, bm, be, bx, bp = _grow(bi, bj, bm, be, bx, bp, nb + 1)
-                                            _append(bi, bj, bm, be, bx, bp, nb, i, j, M, E, x[r], -1)
-                                            nb += 1
-                    elif phase == 1:
-                        # 1b. next to a position where a pair's real contact is lost: the boundary nearest that
-                        # contact on each member and the mate's boundary meeting it, first come first kept
-                        phase = 2
-                        for i in range(n):
-                            for j in range(P):
-                                for dd in range(2):
-                                    kk = i - 1 if dd == 0 else i + 1
-                                    if not (0 <= kk < n and phys[i, j] and not phys[kk, j]):
-                                        continue
-                                    if lab[kk, j, 0] >= 0:
-                                        continue
-                                    r = i * P + j
-                                    for c in range(5):
-                                        x0[c] = x[r, c]
-                                    x0[4] -= ratio * (phi1[kk] - phi1[i])
-                                    for m in range(2):
-                                        margins(kinds[1] if m == 0 else kinds[4], mp1 if m == 0 else mp2,
-                                                x[r, 2 * m], x[r, 2 * m + 1], S, g, dg)
-                                        eb = -1
-                                        for e in range(N):
-                                            if ip[3 + m * N + e] == 0 and math.isfinite(g[e]) and (
-                                                    eb < 0 or g[e] < g[eb]):
-                                                eb = e
-                                        if eb < 0:
-                                            continue
-                                        for t in range(3):
-                                            mm, ee = (m, eb) if t == 0 else (
-                                                1 - m, ip[3 + 2 * N + (m * N + eb) * 2 + t - 1])
-                                            if ee < 0:
-                                                continue
-                                            seen = False
-                                            for q in range(nb):
-                                                if bi[q] == kk and bj[q] == j and bm[q] == mm and be[q] == ee:
-                                                    seen = True
-                                            if not seen:
-                                                bi, bj, bm, be, bx, bp = _grow(bi, bj, bm, be, bx, bp, nb + 1)
-                                                _append(bi, bj, bm, be, bx, bp, nb, kk, j, mm, ee, x0, -1)
-                                                nb += 1
-                    else:
-                        # 2. the march from the contacts that lead to their neighbours in the effective rotation
-                        if phase == 2:
-                            phase = 3
-                            for i in range(n):
-                                for j in range(P):
-                                    if phys[i, j]:
-                                        floor[i, j] = te_s[i, j] + te_tie
-                            nfront = 0
-                            for o in range(nlab):
-                                i, j = lab_i[o], lab_j[o]
-                                if te_edge[i, j] >= best[i, j]:
-                                    front_i[nfront] = i
-                                    front_j[nfront] = j
-                                    nfront += 1
-                        else:   # the contacts found by the last round that lead, in row order, each once
-                            for i in range(n):
-                                for j in range(P):
-                                    cand[i, j] = -1
-                            nfront = 0
-                            for a in range(new0.shape[0]):
-                                i, j = top_i[a], top_j[a]
-                                if new0[a] and te_edge[i, j] >= best[i, j] and cand[i, j] < 0:
-                                    cand[i, j] = 0
-                                    front_i[nfront] = i
-                                    front_j[nfront] = j
-                                    nfront += 1
-                        if nfront == 0:
-                            phase = 4
-                            break
-                        for i in range(n):
-                            for j in range(P):
-                                cand[i, j] = -1
-                        # candidates (first come), then their systems: rows grouped by candidate
-                        ncand = 0
-                        ck, cj = np.empty(n * P, np.int64), np.empty(n * P, np.int64)
-                        csys = np.empty((n * P, 3, 2), np.int64)
-                        cns = np.empty(n * P, np.int64)
-                        cx = np.empty((n * P, 5))
-                        for f in range(nfront):
-                            i, j = front_i[f], front_j[f]
-                            m0, e0 = lab[i, j, 0], lab[i, j, 1]
-                            # the systems: the contact's own, and from a corner its two boundaries as edges
-                            sy = np.empty((3, 2), np.int64)
-                            ns = 1
-                            sy[0, 0], sy[0, 1] = m0, e0
-                            ha = np.empty((2, 2), np.int64)   # the boundaries the contact's system holds
-                            nh = _held(m0, e0, N, K, ha)
-                            if nh == 2:
-                                for b in range(2):
-                                    if ip[3 + ha[b, 0] * N + ha[b, 1]] == 0:
-                                        sy[ns, 0], sy[ns, 1] = ha[b, 0], ha[b, 1]
-                                        ns += 1
-                            have_cr = False
-                            nbrs = _neighbours(i, j, n, P, pairs, span)
-                            for q in range(nbrs.shape[0]):
-                                kk, jk = nbrs[q, 0], nbrs[q, 1]
-                                if lab[kk, jk, 0] >= 0 or cand[kk, jk] >= 0:
-                                    continue
-                                if phys[kk, jk] and not have_cr:
-                                    have_cr = True
-                                    r = i * P + j
-                                    for m in range(2):
-                                        if phys[i, j]:
-                                            for e in range(N):
-                                                cr[m, e] = False
-                                        else:
-                                            _crossed(kinds[1] if m == 0 else kinds[4], mp1 if m == 0 else mp2,
-                                                     x[r, 2 * m], x[r, 2 * m + 1], S, g, dg, cr[m])
-                                nk = 0
-                                hb = np.empty((2, 2), np.int64)
-                                for s_ in range(ns):
-                                    keep = True
-                                    if phys[kk, jk]:   # not on a boundary the contact marched from crossed
-                                        nhb = _held(sy[s_, 0], sy[s_, 1], N, K, hb)
-                                        for b in range(nhb):
-                                            if cr[hb[b, 0], hb[b, 1]]:
-                                                keep = False
-                                    if keep:
-                                        csys[ncand, nk, 0], csys[ncand, nk, 1] = sy[s_, 0], sy[s_, 1]
-                                        nk += 1
-                                if nk:
-                                    cand[kk, jk] = ncand
-                                    ck[ncand], cj[ncand], cns[ncand] = kk, jk, nk
-                                    for c in range(5):
-                                        cx[ncand, c] = x_edge[i, j, c]
-                                    cx[ncand, 4] -= ratio * (phi1[kk] - phi1[i] + (pairs[jk] - pairs[j]) * T1)
-                                    ncand += 1
-                        if ncand == 0:
-                            phase = 4
-                            break
-                        for a in range(ncand):
-                            for s_ in range(cns[a]):
-                                bi, bj, bm, be, bx, bp = _grow(bi, bj, bm, be, bx, bp, nb + 1)
-                                _append(bi, bj, bm, be, bx, bp, nb, ck[a], cj[a], csys[a, s_, 0], csys[a, s_, 1],
-                                        cx[a], -1)
-                                nb += 1
-                if nb == 0:
-                    break
-                level = 0
-            k = nb
-            ri, rj, rm, re = bi[:k].copy(), bj[:k].copy(), bm[:k].copy(), be[:k].copy()
-            rx = bx[:k].copy()
-            rp = bp[:k].copy()
-            cs = np.empty((2, k))
-            for a in range(k):
-                phi = phi1[ri[a]] + pairs[rj[a]] * T1
-                cs[0, a] = math.cos(phi)
-                cs[1, a] = math.sin(phi)
-                if ip[2] != 0 and rm[a] == 0 and re[a] >= N:   # a corner of the pinion's fillet junction?
-                    c = re[a] - N
-                    if c // K == FILLET and N <= c % K <= N + 2:
-                        info[0] = 1
-            if info[0] != 0:
-                return
-            screen_it = 1
-        # ---- solve and screen it
-        G, fo = np.empty((2, k, N)), np.empty((2, k))
-        flags, codes = np.empty((6, k), np.bool_), np.empty((4, k), np.int64)
-        solve_screen(kinds, p1, mp1, p2, mp2, ctol, junction, cs, rx, rm, re, d, M2, fp, max_iter, screen_it, phi1,
-                     pairs, ri, rj, floor, te_edge, x_edge, last, G, fo, flags, codes)
-        if mode == 0:
-            for a in range(k):
-                conv[a] = flags[0, a]
-                ndot[a] = fo[1, a]
-            continue
-        G0, G1, te = G[0], G[1], fo[0]
-        corner, good, ok, new, win = flags[1], flags[2], flags[3], flags[4], flags[5]
-        # ---- labels of the pairs' new contacts
-        for a in range(k):
-            if win[a]:
-                i, j = ri[a], rj[a]
-                if lab[i, j, 2] < 0:
-                    lab[i, j, 2] = nlab
-                    lab_i[nlab] = i
-                    lab_j[nlab] = j
-                    nlab += 1
-                lab[i, j, 0] = rm[a]
-                lab[i, j, 1] = re[a]
-        if level == 0:
-            new0, top_i, top_j = new.copy(), ri, rj
-        elif level == 1:
-            new1, par1 = new.copy(), rp
-        else:
-            new2, par2 = new.copy(), rp
-        # ---- solutions running past another boundary seed the corner of their boundaries (a corner: its vertex)
-        nb = 0
-        if level < 2:
-            hb = np.empty((2, 2), np.int64)
-            for a in range(k):
-                i, j = ri[a], rj[a]
-                bound = best[i, j] - te_tie
-                if math.isnan(bound):
-                    bound = te_edge[i, j]
-                elif not math.isnan(te_edge[i, j]) and te_edge[i, j] > bound:
-                    bound = te_edge[i, j]
-                lead = not (te[a] <= bound) or corner[a]
-                if not (good[a] and not ok[a] and lead):
-                    continue
-                nh = _held(rm[a], re[a], N, K, hb)
-                for m in range(2):
-                    for f in range(N):
-                        if (G0[a, f] if m == 0 else G1[a, f]) >= 0.0 or ip[3 + m * N + f] != 0:
-                            continue
-                        held = False
-                        for b in range(nh):
-                            if hb[b, 0] == m and hb[b, 1] == f:
-                                held = True
-                        if held:
-                            continue
-                        if nh == 1:
-                            am, ae = hb[0, 0], hb[0, 1]
-                        else:   # a corner whose point of member m runs past its boundary: that vertex
-                            if hb[0, 0] == hb[1, 0]:
-                                continue
-                            b = 0 if hb[0, 0] == m else 1
-                            am, ae = hb[b, 0], hb[b, 1]
-                        if m < am or (m == am and f < ae):   # the two boundaries in order
-                            am, ae, bm_, be2 = m, f, am, ae
-                        else:
-                            bm_, be2 = m, f
-                        code = N + (am * N + ae) * K + bm_ * N + be2
-                        bi, bj, bm, be, bx, bp = _grow(bi, bj, bm, be, bx, bp, nb + 1)
-                        _append(bi, bj, bm, be, bx, bp, nb, i, j, 0, code, rx[a], a)
-                        nb += 1
-        level = level + 1 if nb else 3
+                span = 0
+    return span
 
 
 @kernel
-def _held(m, e, N, K, out):
+def _crossed(kinds, mp1, mp2, x, r, cr):
+    """``cr (2, N)``: the points of row r of ``x`` lie beyond each boundary of their member (margin < 0 or NaN)."""
+    S = np.empty((3, 6), np.float64)
+    g = np.empty(N_MARGINS, np.float64)
+    dg = np.empty((N_MARGINS, 2), np.float64)
+    for m in range(2):
+        margins(kinds[1 + 3 * m], mp1 if m == 0 else mp2, x[r, 2 * m], x[r, 2 * m + 1], S, g, dg)
+        for e in range(N_MARGINS):
+            cr[m, e] = not g[e] >= 0.0
+
+
+@kernel
+def _put(R, RX, k, i, j, m, e, xs, r, parent):
+    """Row k of the next batch: position i, pair index j, system (m, e), start ``xs[r] (5,)``, parent row."""
+    R[0, k] = i
+    R[1, k] = j
+    R[2, k] = m
+    R[3, k] = e
+    R[4, k] = parent
+    for c in range(5):
+        RX[k, c] = xs[r, c]
+
+
+@kernel
+def _take(R, RX, rows, rx):
+    """The first k rows of ``R``, ``RX`` into ``rows (5, k)``, ``rx (k, 5)``."""
+    for a in range(rows.shape[1]):
+        for c in range(5):
+            rows[c, a] = R[c, a]
+            rx[a, c] = RX[a, c]
+
+
+@kernel
+def _rows_beyond(kinds, mp1, mp2, ip, fp, x, status, te_s, best, R, RX):
+    """1. Pairs whose extended contact lies beyond a boundary and does not trail the best real contact of another pair:
+    every boundary crossed and the boundary of the mate meeting it, from the extended contact; in the order (position,
+    pair, member, boundary). Returns the number of rows."""
+    N = N_MARGINS
+    n, P = status.shape
+    te_tie = fp[10]
+    cr = np.empty((2, N), np.bool_)
+    none = np.int64(-1)   # a typed value, not a literal: one signature of _put
+    nb = 0
+    for i in range(n):
+        for j in range(P):
+            if status[i, j] != 2 or te_s[i, j] < best[i, j] - te_tie:
+                continue
+            r = i * P + j
+            _crossed(kinds, mp1, mp2, x, r, cr)
+            for M in range(2):
+                for E in range(N):
+                    want = False
+                    for m in range(2):
+                        for e in range(N):
+                            if not cr[m, e] or ip[3 + m * N + e] != 0:
+                                continue
+                            if m == M and e == E:
+                                want = True
+                            elif m != M:
+                                for t in range(2):
+                                    if ip[3 + 2 * N + (m * N + e) * 2 + t] == E:
+                                        want = True
+                    if want:
+                        _put(R, RX, nb, i, j, M, E, x, r, none)
+                        nb += 1
+    return nb
+
+
+@kernel
+def _rows_lost(kinds, mp1, mp2, ip, fp, x, phys, lab, phi1, R, RX):
+    """1b. Next to a position where a pair's real contact is lost (and not labelled yet): the boundary nearest that
+    contact on each member and the mate's boundary meeting it, from that contact; in the order (position, pair,
+    side), each system once (the first start kept). Returns the number of rows."""
+    N = N_MARGINS
+    n, P = phys.shape
+    ratio = fp[5]
+    S = np.empty((3, 6), np.float64)
+    g = np.empty(N, np.float64)
+    dg = np.empty((N, 2), np.float64)
+    x0 = np.empty((1, 5), np.float64)
+    zero, none = np.int64(0), np.int64(-1)   # typed values, not literals: one signature of _put
+    nb = 0
+    for i in range(n):
+        for j in range(P):
+            for dd in range(2):
+                kk = i - 1 if dd == 0 else i + 1
+                if not (0 <= kk < n and phys[i, j] and not phys[kk, j]) or lab[kk, j, 0] >= 0:
+                    continue
+                r = i * P + j
+                for c in range(5):
+                    x0[0, c] = x[r, c]
+                x0[0, 4] -= ratio * (phi1[kk] - phi1[i])
+                for m in range(2):
+                    margins(kinds[1 + 3 * m], mp1 if m == 0 else mp2, x[r, 2 * m], x[r, 2 * m + 1], S, g, dg)
+                    eb = -1
+                    for e in range(N):
+                        if ip[3 + m * N + e] == 0 and math.isfinite(g[e]) and (eb < 0 or g[e] < g[eb]):
+                            eb = e
+                    if eb < 0:
+                        continue
+                    for t in range(3):
+                        mm = m if t == 0 else 1 - m
+                        ee = eb if t == 0 else ip[3 + 2 * N + (m * N + eb) * 2 + t - 1]
+                        if ee < 0:
+                            continue
+                        seen = False
+                        for q in range(nb):
+                            if R[0, q] == kk and R[1, q] == j and R[2, q] == mm and R[3, q] == ee:
+                                seen = True
+                        if not seen:
+                            _put(R, RX, nb, kk, j, mm, ee, x0, zero, none)
+                            nb += 1
+    return nb
+
+
+@kernel
+def _front_start(phys, te_s, fp, floor, te_edge, best, lorder, nlab, front):
+    """2. The march's floor (the TE of a pair's own real contact plus the tie) and its first front: the labelled
+    pairs whose edge contact leads the other pairs' real contacts, in the order they were labelled. Returns its
+    size."""
+    n, P = phys.shape
+    te_tie = fp[10]
+    for i in range(n):
+        for j in range(P):
+            if phys[i, j]:
+                floor[i, j] = te_s[i, j] + te_tie
+    nf = 0
+    for o in range(nlab):
+        i, j = lorder[0, o], lorder[1, o]
+        if te_edge[i, j] >= best[i, j]:
+            front[0, nf] = i
+            front[1, nf] = j
+            nf += 1
+    return nf
+
+
+@kernel
+def _front_next(new0, top_i, top_j, te_edge, best, cand, front):
+    """The next front: the pairs whose contact the last round renewed and that lead, in row order, each once."""
+    n, P = cand.shape
+    for i in range(n):
+        for j in range(P):
+            cand[i, j] = -1
+    nf = 0
+    for a in range(new0.shape[0]):
+        i, j = top_i[a], top_j[a]
+        if new0[a] and te_edge[i, j] >= best[i, j] and cand[i, j] < 0:
+            cand[i, j] = 0
+            front[0, nf] = i
+            front[1, nf] = j
+            nf += 1
+    return nf
+
+
+@kernel
+def _held(m, e, out):
     """The boundaries (member, index) the system (m, e) holds its points on, in ``out (2, 2)``; returns 1 or 2."""
+    N = N_MARGINS
     if m == 0 and e >= N:
         c = e - N
-        a, b = c // K, c % K
+        a, b = c // (2 * N), c % (2 * N)
         out[0, 0] = 1 if a >= N else 0
         out[0, 1] = a - N * out[0, 0]
         out[1, 0] = 1 if b >= N else 0
@@ -486,24 +410,169 @@ def _held(m, e, N, K, out):
 
 
 @kernel
-def _neighbours(i, j, n, P, pairs, span):
-    """(position, pair index) rows of the same and adjacent effective rotations of (i, j), but (i, j) itself, in the
-    order of ``meshing/tca_edge.py``."""
-    out = np.empty((2 + 3 * P, 2), np.int64)
-    c = 0
-    for kk in (i - 1, i + 1):
-        if 0 <= kk < n:
-            out[c, 0] = kk
-            out[c, 1] = j
-            c += 1
-    if span and not 1 < i < n - 2:
-        gi = i + (n - 1) * int(pairs[j])
-        for dd in range(-1, 2):
-            for jk in range(P):
-                if jk != j:
-                    kk = gi + dd - (n - 1) * int(pairs[jk])
-                    if 0 <= kk < n:
-                        out[c, 0] = kk
-                        out[c, 1] = jk
+def _rows_march(kinds, mp1, mp2, ip, fp, x, phys, lab, phi1, pairs, span, x_edge, front, nfront, cand, R, RX):
+    """2. One step of the march: the neighbours in the effective rotation (``meshing/tca_edge.py``) of each contact
+    of the front that are not labelled, each from the first contact reaching it, with the contact's system (and from
+    a corner its two boundaries as edges); into a real contact only the systems holding no boundary that the
+    contact's extended solution crossed. Returns the number of rows (grouped by neighbour)."""
+    N = N_MARGINS
+    n, P = phys.shape
+    T1, ratio = fp[9], fp[5]
+    for i in range(n):
+        for j in range(P):
+            cand[i, j] = -1
+    cr = np.empty((2, N), np.bool_)
+    sy = np.empty((3, 2), np.int64)
+    ha = np.empty((2, 2), np.int64)
+    hb = np.empty((2, 2), np.int64)
+    nbr = np.empty((2 + 3 * P, 2), np.int64)
+    x0 = np.empty((1, 5), np.float64)
+    zero, none = np.int64(0), np.int64(-1)   # typed values, not literals: one signature of _put
+    nb = 0
+    for f in range(nfront):
+        i, j = front[0, f], front[1, f]
+        # the systems: the contact's own, and from a corner its two boundaries as edges
+        sy[0, 0] = lab[i, j, 0]
+        sy[0, 1] = lab[i, j, 1]
+        ns = 1
+        if _held(sy[0, 0], sy[0, 1], ha) == 2:
+            for b in range(2):
+                if ip[3 + ha[b, 0] * N + ha[b, 1]] == 0:
+                    sy[ns, 0] = ha[b, 0]
+                    sy[ns, 1] = ha[b, 1]
+                    ns += 1
+        have_cr = False
+        # neighbours: the same pair's positions before and after; near an end of the cycle the other pairs' at the
+        # same and the adjacent effective rotations
+        c = 0
+        for dd in range(2):
+            kk = i - 1 if dd == 0 else i + 1
+            if 0 <= kk < n:
+                nbr[c, 0] = kk
+                nbr[c, 1] = j
+                c += 1
+        if span != 0 and not 1 < i < n - 2:
+            gi = i + (n - 1) * int(pairs[j])
+            for dd in range(3):
+                for jk in range(P):
+                    kk = gi + dd - 1 - (n - 1) * int(pairs[jk])
+                    if jk != j and 0 <= kk < n:
+                        nbr[c, 0] = kk
+                        nbr[c, 1] = jk
                         c += 1
-    return out[:c]
+        for q in range(c):
+            kk, jk = nbr[q, 0], nbr[q, 1]
+            if lab[kk, jk, 0] >= 0 or cand[kk, jk] >= 0:
+                continue
+            if phys[kk, jk] and not have_cr:
+                have_cr = True
+                if phys[i, j]:
+                    for m in range(2):
+                        for e in range(N):
+                            cr[m, e] = False
+                else:
+                    _crossed(kinds, mp1, mp2, x, i * P + j, cr)
+            for c_ in range(5):
+                x0[0, c_] = x_edge[i, j, c_]
+            x0[0, 4] -= ratio * (phi1[kk] - phi1[i] + (pairs[jk] - pairs[j]) * T1)
+            n0 = nb
+            for s_ in range(ns):
+                keep = True
+                if phys[kk, jk]:
+                    for b in range(_held(sy[s_, 0], sy[s_, 1], hb)):
+                        if cr[hb[b, 0], hb[b, 1]]:
+                            keep = False
+                if keep:
+                    _put(R, RX, nb, kk, jk, sy[s_, 0], sy[s_, 1], x0, zero, none)
+                    nb += 1
+            if nb > n0:
+                cand[kk, jk] = 0
+    return nb
+
+
+@kernel
+def _needs_junction(rm, re):
+    """A row is a corner of the pinion's fillet junction with the gear's toe, heel or top edge."""
+    N = N_MARGINS
+    for a in range(rm.shape[0]):
+        if rm[a] == 0 and re[a] >= N:
+            c = re[a] - N
+            if c // (2 * N) == FILLET and N <= c % (2 * N) <= N + 2:
+                return True
+    return False
+
+
+@kernel
+def _labels(flags, rows, lab, lorder, nlab):
+    """The labels of the pairs' new contacts (rows ``win``, ``flags[5]``), the first labelling of each pair in order.
+    Returns the number of labelled pairs."""
+    for a in range(rows.shape[1]):
+        if flags[5, a]:
+            i, j = rows[0, a], rows[1, a]
+            if lab[i, j, 2] < 0:
+                lab[i, j, 2] = nlab
+                lorder[0, nlab] = i
+                lorder[1, nlab] = j
+                nlab += 1
+            lab[i, j, 0] = rows[2, a]
+            lab[i, j, 1] = rows[3, a]
+    return nlab
+
+
+@kernel
+def _children(ip, fp, rows, rx, G, fo, flags, best, te_edge, R, RX):
+    """The corners seeded by a batch: a valid solution that is not on its flank (``good``, not ``ok``) and could still
+    lead its pair (its TE above the other pairs' best real contact less the tie and above the pair's edge contact, or a
+    corner) and whose point runs past another boundary (not the end of the generated surface): the corner of its
+    boundary with that one, from the solution; a corner whose point of one member runs past that member's boundary:
+    the vertex of its own boundary of that member with it (corners of two boundaries of the same member seed none).
+    Returns the number of rows (parent: the seeding row)."""
+    N = N_MARGINS
+    te_tie = fp[10]
+    hb = np.empty((2, 2), np.int64)
+    zero = np.int64(0)   # a typed value, not a literal: one signature of _put
+    nb = 0
+    for a in range(rows.shape[1]):
+        i, j = rows[0, a], rows[1, a]
+        bound = best[i, j] - te_tie        # numpy's fmax of the two
+        if math.isnan(bound):
+            bound = te_edge[i, j]
+        elif te_edge[i, j] > bound:
+            bound = te_edge[i, j]
+        lead = not (fo[0, a] <= bound) or flags[1, a]
+        if not (flags[2, a] and not flags[3, a] and lead):
+            continue
+        nh = _held(rows[2, a], rows[3, a], hb)
+        for m in range(2):
+            for f in range(N):
+                if G[m, a, f] >= 0.0 or ip[3 + m * N + f] != 0:
+                    continue
+                held = False
+                for b in range(nh):
+                    if hb[b, 0] == m and hb[b, 1] == f:
+                        held = True
+                if held:
+                    continue
+                if nh == 1:
+                    am, ae = hb[0, 0], hb[0, 1]
+                elif hb[0, 0] == hb[1, 0]:
+                    continue
+                else:
+                    b = 0 if hb[0, 0] == m else 1
+                    am, ae = hb[b, 0], hb[b, 1]
+                if m < am or (m == am and f < ae):   # the two boundaries in order
+                    code = N + (m * N + f) * 2 * N + am * N + ae
+                else:
+                    code = N + (am * N + ae) * 2 * N + m * N + f
+                _put(R, RX, nb, i, j, zero, code, rx, a, a)
+                nb += 1
+    return nb
+
+
+@kernel
+def _propagate(new_p, parent, new_c):
+    """``new_p[parent] |= new_c`` with numpy's fancy-index semantics (of rows sharing a parent the last one writes:
+    ``new_p[parent[r]] = old new_p[parent[r]] | new_c[r]``)."""
+    old = new_p.copy()
+    for r in range(new_c.shape[0]):
+        new_p[parent[r]] = old[parent[r]] | new_c[r]
