@@ -87,6 +87,14 @@ def edge_stage_run(kinds, p1, mp1, p2, mp2, ctol, junction, d, M2, fp, ip, c1, s
     lorder = np.empty((2, n * P), np.int64)
     front = np.empty((2, n * P), np.int64)
     span = _stage_init(status, te_s, phi1, T1, phys, best, floor, te_edge, x_edge, lab)
+    # margins of the surface contacts' points (both members), computed where a phase reads them: here alone (the
+    # margins of a generated flank evaluate its blade jet; a kernel calling them would have LLVM optimise that again)
+    Gs = np.empty((n * P, 2, N), np.float64)
+    have = np.zeros(n * P, np.bool_)
+    req = np.empty(n * P, np.int64)
+    S = np.empty((3, 6), np.float64)
+    dg = np.empty((N, 2), np.float64)
+    nfront = 0
     # rows of the next batch: position, pair index, member, edge code, parent row; starts
     cap = 2 * N * n * P + 1
     R = np.empty((5, cap), np.int64)
@@ -129,21 +137,29 @@ def edge_stage_run(kinds, p1, mp1, p2, mp2, ctol, junction, d, M2, fp, ip, c1, s
                 new2 = np.empty(0, np.bool_)
                 nb = 0
                 while nb == 0 and phase < 4:
+                    if phase == 2:
+                        phase = 3
+                        nfront = _front_start(phys, te_s, fp, floor, te_edge, best, lorder, nlab, front)
+                    elif phase == 3:
+                        nfront = _front_next(new0, top_i, top_j, te_edge, best, cand, front)
+                    nreq = _requests(phase, status, te_s, best, fp, phys, front, nfront, req)
+                    for q in range(nreq):
+                        r = req[q]
+                        if not have[r]:
+                            have[r] = True
+                            for m in range(2):
+                                margins(kinds[1 + 3 * m], mp1 if m == 0 else mp2, x[r, 2 * m], x[r, 2 * m + 1], S,
+                                        Gs[r, m], dg)
                     if phase == 0:
                         phase = 1
-                        nb = _rows_beyond(kinds, mp1, mp2, ip, fp, x, status, te_s, best, R, RX)
+                        nb = _rows_beyond(ip, x, status, te_s, best, fp, Gs, R, RX)
                     elif phase == 1:
                         phase = 2
-                        nb = _rows_lost(kinds, mp1, mp2, ip, fp, x, phys, lab, phi1, R, RX)
+                        nb = _rows_lost(ip, fp, x, phys, lab, phi1, Gs, R, RX)
                     else:
-                        if phase == 2:
-                            phase = 3
-                            nfront = _front_start(phys, te_s, fp, floor, te_edge, best, lorder, nlab, front)
-                        else:
-                            nfront = _front_next(new0, top_i, top_j, te_edge, best, cand, front)
                         if nfront:
-                            nb = _rows_march(kinds, mp1, mp2, ip, fp, x, phys, lab, phi1, pairs, span, x_edge, front,
-                                             nfront, cand, R, RX)
+                            nb = _rows_march(ip, fp, phys, lab, phi1, pairs, span, x_edge, front, nfront, cand, Gs, R,
+                                             RX)
                         if nb == 0:
                             phase = 4
                 if nb == 0:
@@ -238,15 +254,39 @@ def _stage_init(status, te_s, phi1, T1, phys, best, floor, te_edge, x_edge, lab)
 
 
 @kernel
-def _crossed(kinds, mp1, mp2, x, r, cr):
-    """``cr (2, N)``: the points of row r of ``x`` lie beyond each boundary of their member (margin < 0 or NaN)."""
-    S = np.empty((3, 6), np.float64)
-    g = np.empty(N_MARGINS, np.float64)
-    dg = np.empty((N_MARGINS, 2), np.float64)
+def _requests(phase, status, te_s, best, fp, phys, front, nfront, req):
+    """The surface contacts (rows ``i P + j``) whose margins the next phase reads: 0 the candidates beyond a
+    boundary, 1 the real contacts next to a lost one, 3 the front's contacts off the real flanks. Returns their
+    number."""
+    n, P = status.shape
+    te_tie = fp[10]
+    nr = 0
+    if phase == 3:
+        for f in range(nfront):
+            i, j = front[0, f], front[1, f]
+            if not phys[i, j]:
+                req[nr] = i * P + j
+                nr += 1
+        return nr
+    for i in range(n):
+        for j in range(P):
+            if phase == 0:
+                use = status[i, j] == 2 and not te_s[i, j] < best[i, j] - te_tie
+            else:
+                use = phys[i, j] and ((i > 0 and not phys[i - 1, j]) or (i < n - 1 and not phys[i + 1, j]))
+            if use:
+                req[nr] = i * P + j
+                nr += 1
+    return nr
+
+
+@kernel
+def _crossed(Gs, r, cr):
+    """``cr (2, N)``: the points of surface contact r lie beyond each boundary of their member (margins ``Gs (n P, 2,
+    N)``: < 0 or NaN)."""
     for m in range(2):
-        margins(kinds[1 + 3 * m], mp1 if m == 0 else mp2, x[r, 2 * m], x[r, 2 * m + 1], S, g, dg)
         for e in range(N_MARGINS):
-            cr[m, e] = not g[e] >= 0.0
+            cr[m, e] = not Gs[r, m, e] >= 0.0
 
 
 @kernel
@@ -271,7 +311,7 @@ def _take(R, RX, rows, rx):
 
 
 @kernel
-def _rows_beyond(kinds, mp1, mp2, ip, fp, x, status, te_s, best, R, RX):
+def _rows_beyond(ip, x, status, te_s, best, fp, Gs, R, RX):
     """1. Pairs whose extended contact lies beyond a boundary and does not trail the best real contact of another pair:
     every boundary crossed and the boundary of the mate meeting it, from the extended contact; in the order (position,
     pair, member, boundary). Returns the number of rows."""
@@ -286,7 +326,7 @@ def _rows_beyond(kinds, mp1, mp2, ip, fp, x, status, te_s, best, R, RX):
             if status[i, j] != 2 or te_s[i, j] < best[i, j] - te_tie:
                 continue
             r = i * P + j
-            _crossed(kinds, mp1, mp2, x, r, cr)
+            _crossed(Gs, r, cr)
             for M in range(2):
                 for E in range(N):
                     want = False
@@ -307,16 +347,13 @@ def _rows_beyond(kinds, mp1, mp2, ip, fp, x, status, te_s, best, R, RX):
 
 
 @kernel
-def _rows_lost(kinds, mp1, mp2, ip, fp, x, phys, lab, phi1, R, RX):
+def _rows_lost(ip, fp, x, phys, lab, phi1, Gs, R, RX):
     """1b. Next to a position where a pair's real contact is lost (and not labelled yet): the boundary nearest that
     contact on each member and the mate's boundary meeting it, from that contact; in the order (position, pair,
     side), each system once (the first start kept). Returns the number of rows."""
     N = N_MARGINS
     n, P = phys.shape
     ratio = fp[5]
-    S = np.empty((3, 6), np.float64)
-    g = np.empty(N, np.float64)
-    dg = np.empty((N, 2), np.float64)
     x0 = np.empty((1, 5), np.float64)
     zero, none = np.int64(0), np.int64(-1)   # typed values, not literals: one signature of _put
     nb = 0
@@ -331,7 +368,7 @@ def _rows_lost(kinds, mp1, mp2, ip, fp, x, phys, lab, phi1, R, RX):
                     x0[0, c] = x[r, c]
                 x0[0, 4] -= ratio * (phi1[kk] - phi1[i])
                 for m in range(2):
-                    margins(kinds[1 + 3 * m], mp1 if m == 0 else mp2, x[r, 2 * m], x[r, 2 * m + 1], S, g, dg)
+                    g = Gs[r, m]
                     eb = -1
                     for e in range(N):
                         if ip[3 + m * N + e] == 0 and math.isfinite(g[e]) and (eb < 0 or g[e] < g[eb]):
@@ -410,7 +447,7 @@ def _held(m, e, out):
 
 
 @kernel
-def _rows_march(kinds, mp1, mp2, ip, fp, x, phys, lab, phi1, pairs, span, x_edge, front, nfront, cand, R, RX):
+def _rows_march(ip, fp, phys, lab, phi1, pairs, span, x_edge, front, nfront, cand, Gs, R, RX):
     """2. One step of the march: the neighbours in the effective rotation (``meshing/tca_edge.py``) of each contact
     of the front that are not labelled, each from the first contact reaching it, with the contact's system (and from
     a corner its two boundaries as edges); into a real contact only the systems holding no boundary that the
@@ -471,7 +508,7 @@ def _rows_march(kinds, mp1, mp2, ip, fp, x, phys, lab, phi1, pairs, span, x_edge
                         for e in range(N):
                             cr[m, e] = False
                 else:
-                    _crossed(kinds, mp1, mp2, x, i * P + j, cr)
+                    _crossed(Gs, i * P + j, cr)
             for c_ in range(5):
                 x0[0, c_] = x_edge[i, j, c_]
             x0[0, 4] -= ratio * (phi1[kk] - phi1[i] + (pairs[jk] - pairs[j]) * T1)
