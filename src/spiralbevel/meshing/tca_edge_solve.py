@@ -368,7 +368,8 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
     if compiled:
         # a corner row codes boundaries a, b (numbered over both members) as k1 + a K + b (corner_split); with
         # N = k1 = k2 boundaries per member, the kernel's code m N + e of a boundary is that number itself. The
-        # Newton runs through edge_try (its solve alone): one compiled entry point for solving and screening
+        # Newton runs through the edge stage's entry point (mode 0: its solve alone), one compiled entry point for
+        # the edge systems (spiralbevel._core.tca_edge_stage)
         kinds, p1, mp1, p2, mp2, ctol = compiled_args(prob)
         d, M2, _ = prob._const
         m = len(x)
