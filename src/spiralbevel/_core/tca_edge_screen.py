@@ -20,7 +20,7 @@ from .jit import kernel
 from .tca_corner_screen import FILLET, corner_excluded
 from .tca_edge import MARGIN_GENERATED, N_MARGINS, edge_newton_jets, margins, orientation
 
-__all__ = ["screen", "accept", "edge_try", "orientation"]
+__all__ = ["screen", "accept", "edge_try", "solve_screen", "orientation"]
 
 
 @kernel
@@ -126,6 +126,41 @@ def accept(ok, te, ii, jj, xs, floor, te_edge, x_edge, last, new, win):
 def edge_try(kinds, p1, mp1, p2, mp2, ctol, junction, c1, s1, x, member, edge, d, M2, h, tol, max_iter, rcond,
              screen_it, tep, phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te, conv, ndot, corner, ma, ea,
              mb, eb, good, ok, new, win):
+    """:func:`solve_screen` with its arguments one by one (the package calls it through
+    :func:`spiralbevel._core.tca_edge_stage.edge_stage_run`; parameters: the corresponding parts of
+    :func:`solve_screen`'s)."""
+    m = x.shape[0]
+    cs = np.empty((2, m))
+    for i in range(m):
+        cs[0, i] = c1[i]
+        cs[1, i] = s1[i]
+    fpar = np.empty(9)
+    fpar[0] = h
+    fpar[1] = tol
+    fpar[2] = rcond
+    for i in range(6):
+        fpar[3 + i] = tep[i]
+    G = np.empty((2, m, N_MARGINS))
+    fo = np.empty((2, m))
+    flags = np.empty((6, m), np.bool_)
+    codes = np.empty((4, m), np.int64)
+    solve_screen(kinds, p1, mp1, p2, mp2, ctol, junction, cs, x, member, edge, d, M2, fpar, max_iter, screen_it, phi1,
+                 pairs, ii, jj, floor, te_edge, x_edge, last, G, fo, flags, codes)
+    for i in range(m):
+        conv[i] = flags[0, i]
+        ndot[i] = fo[1, i]
+        if screen_it != 0:
+            te[i] = fo[0, i]
+            for e in range(N_MARGINS):
+                G0[i, e] = G[0, i, e]
+                G1[i, e] = G[1, i, e]
+            corner[i], good[i], ok[i], new[i], win[i] = flags[1, i], flags[2, i], flags[3, i], flags[4, i], flags[5, i]
+            ma[i], ea[i], mb[i], eb[i] = codes[0, i], codes[1, i], codes[2, i], codes[3, i]
+
+
+@kernel(inline="always")   # one call site in each compiled entry point
+def solve_screen(kinds, p1, mp1, p2, mp2, ctol, junction, cs, x, member, edge, d, M2, fpar, max_iter, screen_it, phi1,
+                 pairs, ii, jj, floor, te_edge, x_edge, last, G, fo, flags, codes):
     """Solve and screen ``m`` edge/corner systems in one compiled call: the Newton of
     :func:`~spiralbevel._core.tca_edge.edge_newton_jets` on ``x (m, 5)`` in place, then (``screen_it`` != 0) all
     margins of both points, the TE, the flank tests and :func:`screen`.
@@ -148,33 +183,47 @@ def edge_try(kinds, p1, mp1, p2, mp2, ctol, junction, c1, s1, x, member, edge, d
         pinion frame), or k = 0: corner systems of that curve against the gear's toe, heel or top edge that
         :func:`~spiralbevel._core.tca_corner_screen.corner_excluded` proves to have no root on the sampled stretch
         are not solved (not converged).
-    c1, s1 : (m,) float
+    cs : (2, m) float
         cos, sin of the effective pinion rotations.
     x : (m, 5) float
         Starts, solutions on return.
     member, edge : (m,) int
         The systems in the code of :func:`screen` (corner rows: member 0, edge ``k1 + a K + b``; here k1 = k2 =
         N_MARGINS).
-    d, M2, h, tol, max_iter, rcond :
+    d, M2 :
+        As :func:`~spiralbevel._core.tca_edge.edge_newton_jets`.
+    fpar : (9,) float, or longer (the rest unread)
+        h, tol and rcond of :func:`~spiralbevel._core.tca_edge.edge_newton_jets`, then ``tep``: drive sign, phi2 of
+        the mean point (rad), ratio z1/z2, phi1 of the mean point (rad), z2, and |TE| limit (rad):
+        TE = drive (-(phi2_eff + 2 pi k / z2 - phi2_mean) - ratio (phi1 - phi1_mean)).
+    max_iter : int
         As :func:`~spiralbevel._core.tca_edge.edge_newton_jets`.
     screen_it : int
         0: the Newton alone (outputs ``conv``, ``ndot``); else everything below.
-    tep : (6,) float
-        drive sign, phi2 of the mean point (rad), ratio z1/z2, phi1 of the mean point (rad), z2, and |TE| limit (rad):
-        TE = drive (-(phi2_eff + 2 pi k / z2 - phi2_mean) - ratio (phi1 - phi1_mean)).
     phi1 : (n,) float, rad
     pairs : (P,) float
         Tooth pair numbers k.
     ii, jj, floor, te_edge, x_edge, last :
         As :func:`screen` and :func:`accept`.
-    G0, G1 : (m, 4) float
-        Output: all margins of the pinion and gear points.
-    te : (m,) float
-        Output: TE of the solutions (rad).
-    conv, ndot, corner, ma, ea, mb, eb, good, ok, new, win :
-        Output, as :func:`screen` (``conv``, ``ndot``: as the Newton returns them; with ``screen_it``, ``conv`` also
-        False off the sheet).
+    G : (2, m, 4) float
+        Output: all margins of the pinion (``G[0]``) and gear (``G[1]``) points.
+    fo : (2, m) float
+        Output: TE of the solutions (rad), and ``ndot``.
+    flags : (6, m) bool
+        Output: ``conv``, ``corner``, ``good``, ``ok``, ``new``, ``win`` as :func:`screen` (``conv`` and ``ndot``: as
+        the Newton returns them; with ``screen_it``, ``conv`` also False off the sheet).
+    codes : (4, m) int
+        Output: ``ma``, ``ea``, ``mb``, ``eb`` as :func:`screen`.
+
+    At most 30 arguments: CPython compiles a call with more as ``f(*args)``, which numba does not inline.
     """
+    c1, s1 = cs[0], cs[1]
+    h, tol, rcond = fpar[0], fpar[1], fpar[2]
+    tep = fpar[3:9]
+    G0, G1 = G[0], G[1]
+    te, ndot = fo[0], fo[1]
+    conv, corner, good, ok, new, win = flags[0], flags[1], flags[2], flags[3], flags[4], flags[5]
+    ma, ea, mb, eb = codes[0], codes[1], codes[2], codes[3]
     m = x.shape[0]
     N = N_MARGINS
     K = 2 * N
@@ -198,30 +247,29 @@ def edge_try(kinds, p1, mp1, p2, mp2, ctol, junction, c1, s1, x, member, edge, d
     for i in range(m):
         conv[i] = cv[i]
         ndot[i] = nd[i]
-    if screen_it == 0:
-        return
-    S = np.empty((3, 6))
-    dg = np.empty((N, 2))
-    C0 = np.empty(m, np.bool_)
-    C1 = np.empty(m, np.bool_)
-    for i in range(m):
-        margins(kinds[1], mp1, x[i, 0], x[i, 1], S, G0[i], dg)
-        on = ctol[2] == 0.0 or orientation(S) * ctol[2] > 0.0   # S: the pinion's jet (margins of a generated flank)
-        margins(kinds[4], mp2, x[i, 2], x[i, 3], S, G1[i], dg)
-        on = on and (ctol[3] == 0.0 or orientation(S) * ctol[3] > 0.0)
-        if not on:   # past a limit line of generation: no contact of the real teeth
-            conv[i] = False
-        in0 = conv[i]
-        in1 = conv[i]
-        for e in range(N):
-            if not G0[i, e] >= -ctol[0]:
-                in0 = False
-            if not G1[i, e] >= -ctol[1]:
-                in1 = False
-        C0[i] = in0
-        C1[i] = in1
-        # TE in the operation order of meshing.tca (gear_angle, then the TE of the pair)
-        phi2 = x[i, 4] + 2 * math.pi * pairs[jj[i]] / tep[4]
-        te[i] = tep[0] * (-(phi2 - tep[1]) - tep[2] * (phi1[ii[i]] - tep[3]))
-    screen(G0, G1, member, edge, np.int64(N), np.int64(K), conv, ndot, te, tep[5], 1e-9, C0, C1, ii, jj, x, floor,
-           te_edge, x_edge, last, corner, ma, ea, mb, eb, good, ok, new, win)
+    if screen_it != 0:
+        S = np.empty((3, 6))
+        dg = np.empty((N, 2))
+        C0 = np.empty(m, np.bool_)
+        C1 = np.empty(m, np.bool_)
+        for i in range(m):
+            margins(kinds[1], mp1, x[i, 0], x[i, 1], S, G0[i], dg)
+            on = ctol[2] == 0.0 or orientation(S) * ctol[2] > 0.0   # S: the pinion's jet (margins of a generated flank)
+            margins(kinds[4], mp2, x[i, 2], x[i, 3], S, G1[i], dg)
+            on = on and (ctol[3] == 0.0 or orientation(S) * ctol[3] > 0.0)
+            if not on:   # past a limit line of generation: no contact of the real teeth
+                conv[i] = False
+            in0 = conv[i]
+            in1 = conv[i]
+            for e in range(N):
+                if not G0[i, e] >= -ctol[0]:
+                    in0 = False
+                if not G1[i, e] >= -ctol[1]:
+                    in1 = False
+            C0[i] = in0
+            C1[i] = in1
+            # TE in the operation order of meshing.tca (gear_angle, then the TE of the pair)
+            phi2 = x[i, 4] + 2 * math.pi * pairs[jj[i]] / tep[4]
+            te[i] = tep[0] * (-(phi2 - tep[1]) - tep[2] * (phi1[ii[i]] - tep[3]))
+        screen(G0, G1, member, edge, np.int64(N), np.int64(K), conv, ndot, te, tep[5], 1e-9, C0, C1, ii, jj, x, floor,
+               te_edge, x_edge, last, corner, ma, ea, mb, eb, good, ok, new, win)

@@ -29,6 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._core import tca_edge_screen as _ks
+from .._core import tca_edge_stage as _kst
 from .tca_edge_solve import _all_margins, corner_index, corner_split, margins_of, solve_edge_contacts  # noqa: F401
 from .tca_edge_solve import _H_TAU, _RCOND, _setup, compiled_args, junction_samples
 
@@ -43,6 +44,86 @@ def _best_of_others(te):
     top = np.sort(te, axis=1)
     first = np.argmax(te, axis=1)
     return np.where(np.arange(P)[None, :] == first[:, None], top[:, -2:-1], top[:, -1:])
+
+
+#: the boundaries of the other member that meet a boundary (a top edge runs into the mate's root: fillet junction)
+_MATE = {"top": ("fillet", "root"), "fillet": ("top",), "root": ("top",)}
+
+
+def _stage_ints(names):
+    """The integer parameters of :func:`spiralbevel._core.tca_edge_stage.edge_stage_run` fixed by the boundary names
+    of both members (kept per pair of name tuples): the end-of-generated-surface flags and the mate table of both
+    members' boundaries (mode, iterations and the junction flag are set per call)."""
+    key = (names[0], names[1])
+    ip = _STAGE_INTS.get(key)
+    if ip is None:
+        N = _kst.N_MARGINS
+        ip = np.zeros(_kst.IP_SIZE, np.int64)
+        mates = ip[3 + 2 * N:].reshape(2, N, 2)
+        mates[:] = -1
+        for m in (0, 1):
+            for e, nm in enumerate(names[m]):
+                ip[3 + m * N + e] = nm == "generated"
+                t = 0
+                for other in _MATE.get(nm, ()):
+                    if other in names[1 - m]:
+                        mates[m, e, t] = names[1 - m].index(other)
+                        t += 1
+        _STAGE_INTS[key] = ip
+    return ip
+
+
+_STAGE_INTS: dict[tuple, np.ndarray] = {}
+
+
+def _label(names, k1, K, m, e):
+    """The label of a contact of system (m, e) (:func:`edge_stage`, Returns)."""
+    if m == 0 and e >= k1:   # a corner (corner_split)
+        a, b = divmod(e - k1, K)
+        ma, mb = int(a >= k1), int(b >= k1)
+        ea, eb = a - k1 * ma, b - k1 * mb
+        who = "pinion/gear" if ma != mb else ("pinion", "gear")[ma]
+        return who, f"{names[ma][ea]}/{names[mb][eb]} corner", 0, e
+    return ("pinion", "gear")[m], names[m][e], m, e
+
+
+def _stage_compiled(prob, fast, x, status, te_surface, phi1, pairs, tol, te_tie, te_frame, names):
+    """:func:`edge_stage` in one compiled call (:func:`spiralbevel._core.tca_edge_stage.edge_stage_run`), run again
+    with the junction samples of the corner proof where the stage first needs them."""
+    n, P = status.shape
+    kinds, p1, mp1, p2, mp2, ctol = fast
+    d, M2, _ = prob._const
+    fp = np.array([_H_TAU, tol, _RCOND, te_frame[0], te_frame[1], prob.ratio, te_frame[2], prob.z2, np.pi / prob.z2,
+                   2 * np.pi / prob.z1, te_tie], float)
+    ip = _stage_ints(names).copy()
+    ip[0], ip[1] = 1, 30
+    junction = junction_samples(prob, _I0, _I0)
+    ip[2] = "_junction" not in prob.__dict__   # not computed yet: the stage stops where it needs them
+    xs = np.ascontiguousarray(x, float).reshape(n * P, 5)
+    st = np.ascontiguousarray(status, np.int64)
+    tes = np.ascontiguousarray(te_surface, float)
+    phi1c, pairs_f = np.ascontiguousarray(phi1, float), np.ascontiguousarray(pairs, float)
+    info = np.zeros(1, np.int64)
+    while True:
+        x_edge, te_edge = np.empty((n, P, 5)), np.empty((n, P))
+        lab, floor = np.empty((n, P, 3), np.int64), np.empty((n, P))
+        _kst.edge_stage_run(kinds, p1, mp1, p2, mp2, ctol, junction, d, M2, fp, ip, _F0, _F0, xs, _I0, _I0, _B0,
+                            _F0, st, tes, phi1c, pairs_f, floor, te_edge, x_edge, lab, info)
+        if not info[0]:
+            break
+        junction = junction_samples(prob, np.zeros(1, np.int64),
+                                    np.array([corner_index(prob, (0, _kst.FILLET), (1, 0))], np.int64))
+        ip[2] = 0
+    label = {}
+    k1, K = len(names[0]), len(names[0]) + len(names[1])
+    o = lab[..., 2].reshape(-1)
+    for f in np.flatnonzero(o >= 0)[np.argsort(o[o >= 0], kind="stable")]:
+        i, j = divmod(int(f), P)
+        label[(i, j)] = _label(names, k1, K, int(lab[i, j, 0]), int(lab[i, j, 1]))
+    return x_edge, te_edge, label
+
+
+_I0, _F0, _B0, _X0 = np.zeros(0, np.int64), np.zeros(0), np.zeros(0, bool), np.zeros((0, 5))
 
 
 def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_tie=1e-11, te_frame=None):
@@ -100,13 +181,17 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     corner's point past the end of its own boundary: that flank's vertex) and labelled ("pinion/gear",
     "heel/top corner") or, for a vertex, ("pinion", "heel/fillet corner").
     """
-    from .contact_surface import surface_contains, surface_on_sheet
-    from .generated_surface import EDGE_TOL
-
     n, P = status.shape
     T1 = 2 * np.pi / prob.z1
     surfs = (prob.pinion, prob.gear)
     names = [tuple(getattr(s, "boundary_names", ())) for s in surfs]
+    if all(names) and te_frame is not None:
+        # the whole stage in one compiled call (spiralbevel._core.tca_edge_stage) where both surfaces have compiled
+        # jets and margins and a margin test (with the limit-line test of a generated flank) as ``contains``, and
+        # the TE's frame is given; the statement below is its reference, run for other surfaces
+        fast = compiled_args(prob)
+        if fast is not None and min(fast[5][:2]) >= 0:
+            return _stage_compiled(prob, fast, x, status, te_surface, phi1, pairs, tol, te_tie, te_frame, names)
     x_edge = np.full((n, P, 5), np.nan)
     te_edge = np.full((n, P), np.nan)
     label = {}
@@ -117,15 +202,8 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     if not all(names):
         return x_edge, te_edge, label
     _, k1, K, _, _ = _setup(prob)  # boundaries of the pinion, of both members
-    # the whole solve and screen of a batch in one compiled call where both surfaces have compiled jets and margins
-    # and a margin test (with the limit-line test of a generated flank) as ``contains``, and the TE's frame is given
-    fast = compiled_args(prob)
-    if fast is not None and (te_frame is None or min(fast[5][:2]) < 0):
-        fast = None
-    if fast is not None:
-        d_, M2_, _ = prob._const
-        tep = np.array([te_frame[0], te_frame[1], prob.ratio, te_frame[2], prob.z2, np.pi / prob.z2], float)
-        phi1c, pairs_f = np.ascontiguousarray(phi1, float), np.ascontiguousarray(pairs, float)
+    from .contact_surface import surface_contains, surface_on_sheet
+    from .generated_surface import EDGE_TOL
 
     def constraints(mem, ee):
         """The boundaries (member, index) a system puts its points on: one for an edge, two for a corner."""
@@ -147,44 +225,32 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
         ma, ea, mb, eb = (np.empty(k, np.int64) for _ in range(4))
         mem, ee = np.ascontiguousarray(mem, np.int64), np.ascontiguousarray(ee, np.int64)
         ii, jj = np.ascontiguousarray(ii, np.int64), np.ascontiguousarray(jj, np.int64)
-        if fast is not None:
-            # solve, margins, TE, flank tests and screen in one compiled call
-            kinds, p1, mp1, p2, mp2, ctol = fast
-            xs = np.array(x0, float, order="C").reshape(-1, 5)
-            G0, G1, te = np.empty((k, 4)), np.empty((k, 4)), np.empty(k)
-            conv, ndot = np.empty(k, bool), np.empty(k)
-            _ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, junction_samples(prob, mem, ee), np.cos(phi_eff),
-                         np.sin(phi_eff), xs, mem, ee, d_, M2_,
-                         _H_TAU, tol, 30, _RCOND, 1, tep, phi1c, pairs_f, ii, jj, floor, te_edge, x_edge, last, G0, G1,
-                         te, conv, ndot, corner, ma, ea, mb, eb, good, ok, new, win)
-            gg = (G0, G1)
-        else:
-            xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
-            gg = [np.ascontiguousarray(margins_of(prob, m, xs[:, 2 * m:2 * m + 2]), float) for m in (0, 1)]
-            with np.errstate(invalid="ignore"):
-                te = np.ascontiguousarray(te_of(xs[:, 4], ii, jj), float)
-            # which boundaries each system holds its points on (a corner: two), whether each point lies on the rest
-            # of its boundaries (margins >= -1e-9 but the held ones; NaN fails) or, held on none, on the real flank,
-            # and whether the solution is a contact (converged, opposed normals, |TE| below half a gear pitch); then
-            # the solutions that lead their pair's best contact so far: compiled (spiralbevel._core.tca_edge_screen)
-            conv = np.array(conv, bool)
-            ic = np.flatnonzero(conv)
-            if ic.size:
-                # a solution whose point (held on a boundary or not) lies on a part of a flank cut away past a limit
-                # line of generation (the surfaces' ``on_sheet``) is no contact of the real teeth
-                conv[ic] = surface_on_sheet(surfs[0], xs[ic, 0:2]) & surface_on_sheet(surfs[1], xs[ic, 2:4])
-            C = [np.zeros(k, bool), np.zeros(k, bool)]
-            ic = np.flatnonzero(conv)
-            if ic.size:
-                for m in (0, 1):
-                    if hasattr(surfs[m], "on_sheet"):    # contains: the margins and on_sheet, which conv holds already
-                        with np.errstate(invalid="ignore"):
-                            C[m][ic] = np.all(gg[m][ic] >= -EDGE_TOL, axis=1)
-                    else:
-                        C[m][ic] = surface_contains(surfs[m], xs[ic, 2 * m:2 * m + 2])
-            _ks.screen(gg[0], gg[1], mem, ee, k1, K, conv, np.ascontiguousarray(ndot, float), te, np.pi / prob.z2,
-                       1e-9, C[0], C[1], ii, jj, np.ascontiguousarray(xs, float), floor, te_edge, x_edge, last, corner,
-                       ma, ea, mb, eb, good, ok, new, win)
+        xs, conv, ndot = solve_edge_contacts(prob, phi_eff, x0, mem, ee, tol=tol)
+        gg = [np.ascontiguousarray(margins_of(prob, m, xs[:, 2 * m:2 * m + 2]), float) for m in (0, 1)]
+        with np.errstate(invalid="ignore"):
+            te = np.ascontiguousarray(te_of(xs[:, 4], ii, jj), float)
+        # which boundaries each system holds its points on (a corner: two), whether each point lies on the rest
+        # of its boundaries (margins >= -1e-9 but the held ones; NaN fails) or, held on none, on the real flank,
+        # and whether the solution is a contact (converged, opposed normals, |TE| below half a gear pitch); then
+        # the solutions that lead their pair's best contact so far: compiled (spiralbevel._core.tca_edge_screen)
+        conv = np.array(conv, bool)
+        ic = np.flatnonzero(conv)
+        if ic.size:
+            # a solution whose point (held on a boundary or not) lies on a part of a flank cut away past a limit
+            # line of generation (the surfaces' ``on_sheet``) is no contact of the real teeth
+            conv[ic] = surface_on_sheet(surfs[0], xs[ic, 0:2]) & surface_on_sheet(surfs[1], xs[ic, 2:4])
+        C = [np.zeros(k, bool), np.zeros(k, bool)]
+        ic = np.flatnonzero(conv)
+        if ic.size:
+            for m in (0, 1):
+                if hasattr(surfs[m], "on_sheet"):    # contains: the margins and on_sheet, which conv holds already
+                    with np.errstate(invalid="ignore"):
+                        C[m][ic] = np.all(gg[m][ic] >= -EDGE_TOL, axis=1)
+                else:
+                    C[m][ic] = surface_contains(surfs[m], xs[ic, 2 * m:2 * m + 2])
+        _ks.screen(gg[0], gg[1], mem, ee, k1, K, conv, np.ascontiguousarray(ndot, float), te, np.pi / prob.z2,
+                   1e-9, C[0], C[1], ii, jj, np.ascontiguousarray(xs, float), floor, te_edge, x_edge, last, corner,
+                   ma, ea, mb, eb, good, ok, new, win)
 
         def cons(a):
             """The boundaries (member, index) system a holds its points on."""
@@ -239,7 +305,7 @@ def edge_stage(prob, x, status, te_surface, te_of, phi1, pairs, tol=1e-10, te_ti
     # flank): pairs whose extended contact trails the best real contact of another pair cannot lead, are not solved
     best_other = _best_of_others(te_phys)
     ii, jj = np.nonzero((status == 2) & ~(te_surface < best_other - te_tie))  # ContactStatus.EDGE
-    mate = {"top": ("fillet", "root"), "fillet": ("top",), "root": ("top",)}
+    mate = _MATE
     if ii.size:
         kmax = max(len(names[0]), len(names[1]))
         # crossed[a, m, e]: candidate a's point of member m lies beyond boundary e of m (or off the surface: NaN)

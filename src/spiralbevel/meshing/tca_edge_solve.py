@@ -12,7 +12,7 @@ import numpy as np
 from .._core import tca_batch as _b
 from .._core import tca_edge as _ke
 from .._core import tca_corner_screen as _kc
-from .._core import tca_edge_screen as _ks
+from .._core import tca_edge_stage as _kst
 from .._core.jets import GENERATED
 from .contact_surface import surface_contains, surface_derivatives
 
@@ -207,17 +207,17 @@ def junction_samples(prob, member, edge):
     return cached[1]
 
 
-#: placeholders of the screening arguments of ``edge_try`` when it only solves (``screen_it`` 0)
-_NO_SCREEN = None
+#: placeholders of the stage's arguments of ``edge_stage_run`` when it only solves (mode 0)
+_NO_STAGE = None
 
 
-def _no_screen():
-    global _NO_SCREEN
-    if _NO_SCREEN is None:
-        i0, f0 = np.zeros(0, np.int64), np.zeros(0)
-        _NO_SCREEN = (np.zeros(6), f0, f0, i0, i0, np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0, 5)),
-                      np.zeros((0, 0), np.int64), np.zeros((0, 4)), np.zeros((0, 4)), f0)
-    return _NO_SCREEN
+def _no_stage():
+    global _NO_STAGE
+    if _NO_STAGE is None:
+        f0 = np.zeros(0)
+        _NO_STAGE = (np.zeros((0, 0), np.int64), np.zeros((0, 0)), f0, f0, np.zeros((0, 0)), np.zeros((0, 0)),
+                     np.zeros((0, 0, 5)), np.zeros((0, 0, 3), np.int64), np.zeros(1, np.int64))
+    return _NO_STAGE
 
 
 def margins_of(prob, member, q):
@@ -368,17 +368,18 @@ def solve_edge_contacts(prob, phi1_eff, x0, member, edge, tol=1e-10, max_iter=30
     if compiled:
         # a corner row codes boundaries a, b (numbered over both members) as k1 + a K + b (corner_split); with
         # N = k1 = k2 boundaries per member, the kernel's code m N + e of a boundary is that number itself. The
-        # Newton runs through edge_try (its solve alone): one compiled entry point for solving and screening
+        # Newton runs through the edge stage's entry point (mode 0: its solve alone), one compiled entry point for
+        # the edge systems (spiralbevel._core.tca_edge_stage)
         kinds, p1, mp1, p2, mp2, ctol = compiled_args(prob)
         d, M2, _ = prob._const
         m = len(x)
         conv, ndot = np.empty(m, bool), np.empty(m)
-        tep, phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te = _no_screen()
-        b0, i0 = np.zeros(0, bool), np.zeros(0, np.int64)
-        _ks.edge_try(kinds, p1, mp1, p2, mp2, ctol, junction_samples(prob, member, edge), c1, s1, x, member, edge, d,
-                     M2, _H_TAU, tol, int(max_iter), _RCOND,
-                     0, tep, phi1, pairs, ii, jj, floor, te_edge, x_edge, last, G0, G1, te, conv, ndot, b0, i0, i0, i0,
-                     i0, b0, b0, b0, b0)
+        fp = np.zeros(_kst.FP_SIZE)
+        fp[0:3] = _H_TAU, tol, _RCOND
+        ip = np.zeros(_kst.IP_SIZE, np.int64)
+        ip[1] = max_iter
+        _kst.edge_stage_run(kinds, p1, mp1, p2, mp2, ctol, junction_samples(prob, member, edge), d, M2, fp, ip, c1, s1,
+                            x, member, edge, conv, ndot, *_no_stage())
         return x, conv, ndot
     corner, ma, ea, mb, eb = corner_split(prob, member, edge)
     cols = np.where(corner[:, None], np.stack([ma, ea, mb, eb], 1), -1)
