@@ -5,7 +5,7 @@ TCA shows edge contacts at the pinion's fillet. Checked two ways other than the 
 reach brute force in 3-D: each junction point turned about its own axis through a full turn, its depth inside the
 mate's face-cone solid (built from the ISO outer tip point and face angle, not from the mean addendum and the
 dedendum angles the check uses); (2) the tooth contact analysis of the pair finds the edge contact there.
-Does not fire: the bundled face-milled examples.
+On two bundled examples: fires where, and only where, their TCA shows the pinion's fillet edge contact.
 """
 
 from __future__ import annotations
@@ -210,16 +210,32 @@ def test_mate_top_is_the_clearance_at_the_mean_point(small):
         assert mate_top_height(blank, m, [float(blank.Rm)])[0] == pytest.approx(float(blank.c), abs=1e-9)
 
 
-def test_fires_where_the_tca_shows_the_fillet_edge_contact(small):
+def _tca(blank, setups):
+    from spiralbevel.gearset.tca import side_tca
+
+    return {name: side_tca(blank, setups, name, n_positions=21)[1] for name in ("drive", "coast")}
+
+
+@pytest.fixture(scope="module")
+def small_tca(small):
+    """The 21-position TCA report sections of both sides of the 11/17 pair."""
+    return _tca(small[1], small[2])
+
+
+def _pinion_fillet_contact(tca):
+    """{side: whether the 21-position TCA of that side has an edge contact at the pinion's fillet}."""
+    return {name: any(e["member"] == "pinion" and "fillet" in e["edge"] for e in sec["edge_contacts"])
+            for name, sec in tca.items()}
+
+
+def test_fires_where_the_tca_shows_the_fillet_edge_contact(small, small_tca):
     """On the 11/17 design the check fires on the pinion's convex (coast) flank and not on its concave (drive) flank
     (junction 0.83-0.90 and 0.64-0.86 mm above the root cone, the gear's tip contact 0.75-0.95 mm), and the TCA (the
     brute-force-checked edge-contact solve) finds the pinion's fillet edge contact on the coast side and not on the
     drive side; the message names the cause and the keys to change."""
-    from spiralbevel.gearset.tca import side_tca
-
     spec, blank, setups = small
     checks = fillet_top_checks(blank, setups)
-    tca = {name: side_tca(blank, setups, name, n_positions=21)[1] for name in ("drive", "coast")}
+    tca = small_tca
     msgs = fillet_top_messages(spec, blank, checks, tca)
     assert checks[(Member.PINION, Side.CONVEX)].fires
     assert not checks[(Member.PINION, Side.CONCAVE)].fires and (Member.PINION, Side.CONCAVE) not in msgs
@@ -240,48 +256,34 @@ def test_fires_where_the_tca_shows_the_fillet_edge_contact(small):
     assert seen == {"coast": True, "drive": False}
 
 
-def _tca(blank, setups):
-    from spiralbevel.gearset.tca import side_tca
-
-    return {name: side_tca(blank, setups, name, n_positions=21)[1] for name in ("drive", "coast")}
+PINION = {(Member.PINION, Side.CONVEX), (Member.PINION, Side.CONCAVE)}
 
 
-def _pinion_fillet_contact(tca):
-    """{side: whether the 21-position TCA of that side has an edge contact at the pinion's fillet}."""
-    return {name: any(e["member"] == "pinion" and "fillet" in e["edge"] for e in sec["edge_contacts"])
-            for name, sec in tca.items()}
+@pytest.mark.parametrize("design,fires", [("iso23509_sample1", set()), ("aviation_23x65_synthesized", PINION)])
+def test_bundled_examples_fire_where_the_tca_shows_the_fillet_edge_contact(design, fires):
+    """The flanks the check fires on (and reports, the TCA showing the edge contact they explain) are the pinion's
+    where the TCA of their side shows the pinion's fillet edge contact, on two bundled examples:
 
-
-def test_does_not_fire_on_the_iso_sample():
-    """ISO 23509 sample 1 (bundled): no flank's junction above the mate's tip contact (by 0.02 mm and more), and no
-    fillet edge contact in the TCA of either side. The default synthesis puts the drive (concave) pinion's root, which
-    its settings cut 0.09 mm below the root cone, back on it (``pinion_fillet.raise_root``); that lifts its junction,
-    and the edge radius is reduced (1.160 to 1.039 mm) so that the lift keeps it below the mate's tip contact (measured
-    0.025 mm below; 0.085 mm on the convex flank)."""
-    gs = sb.GearSet.from_design("iso23509_sample1")
+    - ISO 23509 sample 1: no flank's junction above the mate's tip contact (by 0.02 mm and more), no fillet edge
+      contact in the TCA of either side. The default synthesis puts the drive (concave) pinion's root, which its
+      settings cut 0.09 mm below the root cone, back on it (``pinion_fillet.raise_root``); that lifts its junction,
+      and the edge radius is reduced (1.160 to 1.039 mm) so that the lift keeps it below the mate's tip contact
+      (measured 0.025 mm below; 0.085 mm on the convex flank).
+    - the synthesized seed-001 pair (23/65, 22.5 deg blades, edge radius 1.31 mm): both pinion junctions lie above
+      the gear's tip contact (0.87-0.94 mm against 0.78-0.86 mm) and the TCA of both sides shows the pinion's fillet
+      edge contact; the gear's junctions stay below the pinion's tip contact."""
+    gs = sb.GearSet.from_design(design)
     checks = fillet_top_checks(gs.blank, gs.setups)
     assert len(checks) == 4
     for res in checks.values():
-        assert not isinstance(res, Exception) and not res.fires, res
+        assert not isinstance(res, Exception), res
+    assert {k for k, r in checks.items() if r.fires} == fires
     tca = _tca(gs.blank, gs.setups)
-    assert fillet_top_messages(gs.design, gs.blank, checks, tca) == {}
-    assert _pinion_fillet_contact(tca) == {"drive": False, "coast": False}
+    assert _pinion_fillet_contact(tca) == {"drive": bool(fires), "coast": bool(fires)}
+    assert set(fillet_top_messages(gs.design, gs.blank, checks, tca)) == fires
 
 
-def test_fires_on_the_synthesized_seed_example():
-    """The bundled synthesized seed-001 pair (23/65, 22.5 deg blades, edge radius 1.31 mm): both pinion junctions lie
-    above the gear's tip contact (0.87-0.94 mm against 0.78-0.86 mm) and the TCA of both sides shows the pinion's
-    fillet edge contact; the gear's junctions stay below the pinion's tip contact."""
-    gs = sb.GearSet.from_design("aviation_23x65_synthesized")
-    checks = fillet_top_checks(gs.blank, gs.setups)
-    pinion = {(Member.PINION, Side.CONVEX), (Member.PINION, Side.CONCAVE)}
-    assert {k for k, r in checks.items() if r.fires} == pinion
-    tca = _tca(gs.blank, gs.setups)
-    assert _pinion_fillet_contact(tca) == {"drive": True, "coast": True}
-    assert set(fillet_top_messages(gs.design, gs.blank, checks, tca)) == pinion
-
-
-def test_report_section_and_design_warning(small):
+def test_report_section_and_design_warning(small, small_tca):
     """The job's report step (``fillet_top_report``, after the TCA): each flank's ``fillet_top`` section; a
     ``DesignWarning`` naming the cause, also in the flank's ``checks``, only where the estimate fires and the TCA
     shows the edge contact it explains (11/17: the pinion's convex flank; its gear concave flank, also estimated
@@ -290,7 +292,7 @@ def test_report_section_and_design_warning(small):
     from spiralbevel.gearset.fillet_top import fillet_top_report
 
     spec, blank, setups = small
-    tca = _tca(blank, setups)
+    tca = small_tca
     flanks = {}
     with pytest.warns(DesignWarning, match="pinion convex: fillet above the mate's tip") as rec:
         fillet_top_report(spec, blank, setups, flanks, tca)

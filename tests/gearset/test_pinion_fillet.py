@@ -8,7 +8,6 @@ whose settings lift its root is put back on the root cone with the same blade su
 
 import dataclasses
 import math
-import warnings
 
 import numpy as np
 import pytest
@@ -19,11 +18,9 @@ from spiralbevel.generation.flank import generate_flank
 from spiralbevel.gearset.pinion_fillet import (fit_pinion_edge_radius, gear_top_height, junction_height, lower_root,
                                              raise_root)
 from spiralbevel.gearset.root_cone import root_heights
-from spiralbevel.io.design_file import parse_design
-from spiralbevel.job import facemilled as fm
-from spiralbevel.job.blank import blank_from_design
 from spiralbevel.machine.default_cutter import EDGE_RADIUS_FILL
 from _design_12x41 import design_12x41
+from _designs import basic_setups
 from _synthesis_stand_in import Result
 
 DESIGN = design_12x41()
@@ -31,11 +28,7 @@ DESIGN = design_12x41()
 
 @pytest.fixture(scope="module")
 def case():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        spec = parse_design(DESIGN)
-        blank = blank_from_design(spec)
-        setups = fm._basic_setups(spec, blank)
+    _, blank, setups = basic_setups(DESIGN)
     return blank, setups[(Member.PINION, Side.CONVEX)]
 
 

@@ -31,14 +31,12 @@ from spiralbevel.gearset.slot_intrusion import SLOT_FIT_MM, slot_fit
 from spiralbevel.gearset.slot_refit import fit_point_widths, refit_side
 from spiralbevel.gearset.transfer_check import short_edge_positions
 from spiralbevel.generation.flank import generate_flank
-from spiralbevel.io.design_file import parse_design
-from spiralbevel.job.blank import blank_from_design
 from spiralbevel.machine.default_cutter import EDGE_RADIUS_FILL
 from spiralbevel.meshing import synthesis as syn
 from spiralbevel.meshing.pair import meshing_pair
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC
-from _designs import basic_design
+from _designs import basic_design, basic_setups
 
 #: bench_robustness.py 40 1, design 31, as the bench writes it
 DESIGN_10X54 = basic_design(10, 54, shaft_angle="79.000", module="10.088", face_width="46.459",
@@ -58,11 +56,9 @@ def _synthesize(blank, basic, name):
 
 @pytest.fixture(scope="module")
 def pair():
+    spec, blank, basic = basic_setups(DESIGN_10X54)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        spec = parse_design(DESIGN_10X54)
-        blank = blank_from_design(spec)
-        basic = gfm._basic_setups(spec, blank)
         drive, gear, drive_setup = _synthesize(blank, basic, "drive")
         coast, _, _ = _synthesize(blank, basic, "coast")
     return spec, blank, drive, gear, drive_setup, coast

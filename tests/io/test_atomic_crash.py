@@ -139,8 +139,11 @@ def test_foreign_directory_refused_and_previous_output_replaced(tmp_path):
 @pytest.mark.parametrize("sig, code", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
 def test_signal_during_a_run_leaves_no_leftovers(tmp_path, sig, code):
     # a run whose computation is slow (patched): the signal arrives while the output is being built
+    # the child takes SIGINT as a user's Ctrl-C does: a test run started in the background by a non-interactive
+    # shell (``pytest &``, no job control) ignores SIGINT, and a child inherits an ignored signal
     script = textwrap.dedent("""
-        import sys, time
+        import signal, sys, time
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         import spiralbevel.gearset.blank as blank
         def slow(spec):
             print("started", flush=True)

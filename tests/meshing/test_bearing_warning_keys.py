@@ -2,12 +2,14 @@
 ``[synthesis]`` section leaves out (its pinion flank then has the basic settings from the blank, which the design file
 does not give: the warning once told the user to remove settings they never wrote)."""
 
+import re
 from types import SimpleNamespace
 
 import numpy as np
 
 from spiralbevel.gearset.run_facemilled import pinion_settings_given
 from spiralbevel.io.design_file import parse_design
+from spiralbevel.io.design_schema import BaseModel, DesignFile, SynthesisSpec
 from spiralbevel.meshing.tca_checks import bearing_warnings
 
 BASE = """
@@ -54,10 +56,46 @@ def test_warning_names_the_key_of_each_case():
     assert "synthesis.path_direction" in synth
 
 
-def test_default_search_warning_says_to_give_both_sides():
-    """A default-synthesized side that keeps an edge contact: a [synthesis] section with only path_direction would
-    synthesize the drive side alone (its ``sides`` default), so the message names sides with both."""
+def _schema_key(path: str) -> bool:
+    """True when the dotted design-file key ``path`` (``synthesis.sides``, ``face_milling.pinion_convex.machine``)
+    is a field of the design-file schema."""
+    model = DesignFile
+    for part in path.split("."):
+        if model is None or part not in model.model_fields:
+            return False
+        ann = model.model_fields[part].annotation
+        model = next((a for a in (ann, *getattr(ann, "__args__", ())) if isinstance(a, type) and
+                      issubclass(a, BaseModel)), None)
+    return True
+
+
+def _keys(text: str) -> list[str]:
+    return re.findall(r"\b(?:synthesis|face_milling|gear_set)(?:\.[a-z_0-9]+)+", text)
+
+
+def test_every_warning_names_keys_of_the_schema():
+    res = _res_with_one_edge_contact()
+    cases = [dict(synthesized=False, given=True), dict(synthesized=False, given=False), dict(synthesized=True),
+             dict(synthesized=True, default=True)]
+    for case in cases:
+        for side in ("drive", "coast"):
+            (text,) = bearing_warnings(res, side, **case)
+            keys = _keys(text)
+            assert keys, (case, text)
+            for key in keys:
+                assert _schema_key(key), (case, key)
+    assert not _schema_key("synthesis.drive.te_magnitude") and _schema_key("synthesis.te_magnitude")
+
+
+def test_default_search_warning_gives_true_advice():
+    """A default-synthesized side that keeps an edge contact: the warning says to give synthesis.path_direction in the
+    [synthesis] section, with the range the schema allows, and that it applies to both sides unless synthesis.sides
+    says otherwise (a section that leaves ``sides`` out develops both sides, tests/gearset/test_effective_synthesis.py;
+    the warning once said to write sides = ["drive", "coast"], as if a section without it synthesized one side)."""
     res = _res_with_one_edge_contact()
     (text,) = bearing_warnings(res, "drive", synthesized=True, default=True)
-    assert 'sides = ["drive", "coast"]' in text and "synthesis.path_direction" in text
-    assert "default synthesis" in text
+    assert "default synthesis" in text and "[synthesis] section" in text
+    assert "synthesis.path_direction" in text and "synthesis.semi_major_axis" in text
+    assert "sides = [" not in text and "both when left out" in text
+    eta = SynthesisSpec.model_json_schema()["properties"]["path_direction"]
+    assert f"{eta['exclusiveMinimum']:g} to {eta['exclusiveMaximum']:g} deg" in text and eta["unit"] == "deg"

@@ -17,33 +17,19 @@ import warnings
 import numpy as np
 import pytest
 
+from _designs import basic_design, basic_setups
 from _gap_oracle import tca_deviation
 
 from spiralbevel.conventions import Member
 from spiralbevel.gearset import facemilled as gfm
-from spiralbevel.io.design_file import parse_design
-from spiralbevel.job.blank import blank_from_design
 from spiralbevel.meshing import synthesis as syn
 from spiralbevel.meshing.pair import meshing_pair
 from spiralbevel.meshing.tca import solve_tca
 from spiralbevel.meshing.tca_result import ARCSEC, ContactStatus
 
 #: bench_robustness.py 40 1, design 24, as the bench writes it
-DESIGN = """
-title = "bench design"
-[gear_set]
-pinion_teeth = 14
-gear_teeth = 56
-shaft_angle = 77.257
-module = 3.764
-face_width = 18.872
-normal_pressure_angle = 20
-mean_spiral_angle = 35.441
-pinion_hand = "LH"
-cutter_radius = 103.49
-[flank]
-kind = "face-milled"
-"""
+DESIGN = basic_design(14, 56, shaft_angle="77.257", module="3.764", face_width="18.872", mean_spiral_angle="35.441",
+                      hand="LH", cutter_radius="103.49", title="bench design")
 
 #: the dense TCA's positions: ten per step of the 41-position TCA (the detector refines by eight)
 DENSE = 401
@@ -54,11 +40,9 @@ TOL_ARCSEC = 1e-5
 
 @pytest.fixture(scope="module")
 def coast():
+    spec, blank, setups = basic_setups(DESIGN)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        spec = parse_design(DESIGN)
-        blank = blank_from_design(spec)
-        setups = gfm._basic_setups(spec, blank)
         sy = gfm.effective_synthesis(spec, blank)
         new, _ = gfm.synthesize_sides(spec, blank, setups, sy.model_copy(update={"sides": ("coast",)}))
     s1, s2 = gfm.PAIR_SIDES["coast"]

@@ -9,7 +9,8 @@ import warnings
 from ..conventions import Member, Side
 from ..errors import DesignWarning
 from ..meshing.tca_result import ARCSEC
-from .default_synthesis import _FREE, PAIR_SIDES
+from .default_candidates import _FREE
+from .default_synthesis import PAIR_SIDES
 from .flank_checks import flank_checks
 from .flank_setup import MEMBERS
 from .tooth_assembly import tooth_rotation

@@ -146,9 +146,10 @@ def _synthesize(spec, blank, setups):
             # quote the last failure without its own iteration count: this error appends it once
             raise ConvergenceError(f"{name} side: the default local synthesis of the hypoid pinion found no pinion "
                                    f"flank for any path direction (last: {getattr(last, 'message', last)}); give a "
-                                   "[synthesis] section with sides = [\"drive\", \"coast\"] and another "
-                                   "synthesis.free (\"fixed-blade\" or \"modified-roll\"), synthesis.path_direction "
-                                   "or synthesis.semi_major_axis",
+                                   "[synthesis] section with another synthesis.free (\"fixed-blade\" or "
+                                   "\"modified-roll\"), a synthesis.path_direction or a synthesis.semi_major_axis "
+                                   "(the keys it leaves out keep the defaults: both sides, the search over path "
+                                   "directions)",
                                    getattr(last, "iterations", 0), getattr(last, "residual", float("inf")),
                                    getattr(last, "last", None)) from last
         off, res, eta = best

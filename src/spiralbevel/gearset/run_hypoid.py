@@ -34,7 +34,7 @@ def run_hypoid(gs, out, steps, report, summary):
         setups, synth = gs.setups, gs.synthesis
         report["synthesis"] = {name: synthesis_units(r.summary()) for name, r in synth.items()}
     with steps.step("generated flanks: design against achieved"):
-        flanks, machines = fm.flank_report(setups, blank)
+        flanks, machines = fm.flank_report(setups, blank, spec)   # the checks name the design-file keys
         report["flanks"] = flanks
         report["machine_settings"] = machines
     with steps.step("tooth contact analysis (offset kinematics)"):

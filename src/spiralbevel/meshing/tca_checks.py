@@ -39,9 +39,9 @@ def bearing_warnings(res, side: str, synthesized: bool, given: bool = True, defa
         (``face_milling.pinion_<side>.machine``), False when they are the basic settings from the blank (a
         ``[synthesis]`` section whose ``sides`` leave this side out). The key the message names depends on it.
     default : bool, optional
-        With ``synthesized``: the design file has no ``[synthesis]`` section (the default synthesis searched the path
-        directions). A section replaces that search on both sides with its own values (``sides`` defaults to the
-        drive side only), so the message says to give both sides.
+        With ``synthesized``: the default synthesis searched the path directions (the design file gives no
+        ``synthesis.path_direction``). A given ``synthesis.path_direction`` replaces that search on every side that
+        ``synthesis.sides`` lists (left out: both sides), so the message names that key and the range it takes.
 
     Returns
     -------
@@ -56,10 +56,10 @@ def bearing_warnings(res, side: str, synthesized: bool, given: bool = True, defa
     where = Counter(f"{member} {edge}" for _i, _k, member, edge in res.edges)
     what = ", ".join(f"{name} at {n}" for name, n in sorted(where.items())) or "no contact"
     if synthesized and default:
-        key = ("the default synthesis found no path direction that keeps it inside; to try others, give a [synthesis] "
-               "section with sides = [\"drive\", \"coast\"] (it replaces the default search on both sides), a "
-               "synthesis.path_direction (toward the lengthwise direction keeps the path off a tooth top) and a "
-               "shorter synthesis.semi_major_axis")
+        key = ("the default synthesis found no path direction that keeps it inside; to try another, give "
+               "synthesis.path_direction in the [synthesis] section (-60 to 60 deg from the profile direction; "
+               "toward the lengthwise direction keeps the path off a tooth top; it replaces the default search on "
+               "every side synthesis.sides lists, both when left out) and a shorter synthesis.semi_major_axis")
     elif synthesized:
         key = ("change synthesis.path_direction (toward the lengthwise direction keeps the path off a tooth top) or "
                "shorten synthesis.semi_major_axis")
