@@ -295,9 +295,10 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     # ---------------------------------------------------------------- 3. all positions x pairs
     # beyond a node the continuation could not reach, the path of contact has ended (the extended flanks end or
     # the normals turn away): those offsets are not solved and are reported as no contact
-    guess = _predict(off.reshape(-1), nodes, X, Xp)
-    phi_eff = phi1_mean + off.reshape(-1)
-    reach = (off.reshape(-1) >= o_fail_lo - 1e-12) & (off.reshape(-1) <= o_fail_hi + 1e-12)
+    offs = off.reshape(-1)
+    guess = _predict(offs, nodes, X, Xp)
+    phi_eff = phi1_mean + offs
+    reach = (offs >= o_fail_lo - 1e-12) & (offs <= o_fail_hi + 1e-12)
     x, conv, res, J, data, iters, _ = _solve_reachable(prob, phi_eff, guess, reach, tol)
     line = conv & _b.is_singular(J, line_tol)
     if line.any() and line_anchor is not None:
@@ -416,8 +417,9 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     axes_ = np.where((status == _LINE)[:, None], np.inf, axes_)
     dirs1 = np.einsum("mji,mkj->mki", R1s, dirs)
     dirs2 = np.einsum("mji,mkj->mki", R2s, dirs)
-    for arr in (lam, axes_, dirs1, dirs2):
-        arr[nocon_or_edge] = np.nan
+    if nocon_or_edge.any():
+        for arr in (lam, axes_, dirs1, dirs2):
+            arr[nocon_or_edge] = np.nan
     # transfer points: where the pair in contact changes, at the exact crossing of the two pairs' TE curves
     kinds = np.full((n, P), -1)
     for (i, j), lab in labels.items():
