@@ -395,10 +395,10 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     anyv = fin.any(axis=1)
     # ties (several pairs within te_tie of the largest TE, e.g. line contact of conjugate flanks): a surface contact
     # before an edge contact of the same line, then the first pair in `pairs` order
-    tmax = np.max(score, axis=1, keepdims=True)
+    tmax = score.max(axis=1, keepdims=True)
     tie = score >= tmax - te_tie
     rank = np.where(tie, np.where(sp2 == _EDGE, 1, 2), 0)
-    sel = np.where(anyv, np.argmax(rank, axis=1), -1)
+    sel = np.where(anyv, rank.argmax(axis=1), -1)
     sel0 = np.maximum(sel, 0)
     status = np.where(anyv, sp2[np.arange(n), sel0], _NONE)
     edge_pos = status == _EDGE
