@@ -68,7 +68,13 @@ def _flat(a, shape, tail):
     """``a`` broadcast to ``shape + tail`` as a contiguous, writable float64 array of rows ``(-1,) + tail``.
 
     Writable: a read-only array (``broadcast_to`` returns one) is another numba type and would compile every kernel it
-    reaches a second time."""
+    reaches a second time. An array of that shape is passed as it is when it already is such an array (the kernels
+    only read it), else copied once (no broadcast)."""
+    if type(a) is np.ndarray and a.dtype == np.float64 and a.shape == shape + tail:
+        f = a.flags
+        if not (f.c_contiguous and f.writeable and f.aligned):
+            a = np.array(a, float, order="C")
+        return a.reshape((-1,) + tail)
     return np.require(np.broadcast_to(np.asarray(a, float), shape + tail), float, "CW").reshape((-1,) + tail)
 
 
@@ -78,7 +84,9 @@ def _pose(phi1, phi2, axes):
     from .tca_ellipse import pose_batch  # numba stays off the import path of the numpy-only users of this module
 
     a1, o1, a2, o2, B2 = axes
-    shape = np.broadcast_shapes(np.shape(phi1), np.shape(phi2))
+    shape = np.shape(phi1)
+    if np.shape(phi2) != shape:
+        shape = np.broadcast_shapes(shape, np.shape(phi2))
     p1, p2 = _flat(phi1, shape, ()), _flat(phi2, shape, ())
     R1, R2 = np.empty((p1.size, 3, 3)), np.empty((p1.size, 3, 3))
     pose_batch(p1, p2, np.ascontiguousarray(a2, float), np.ascontiguousarray(B2, float), R1, R2)

@@ -57,6 +57,10 @@ from .tca_result import ContactStatus, TCAResult
 
 __all__ = ["solve_tca", "ContactProblem", "TCAResult", "ContactStatus", "Misalignment"]
 
+#: the statuses as plain ints (an array compared with an IntEnum member converts it on every call)
+_OK, _LINE, _EDGE, _NONE = (int(ContactStatus.OK), int(ContactStatus.LINE), int(ContactStatus.EDGE),
+                            int(ContactStatus.NO_CONTACT))
+
 
 def _validate(n_positions, pairs, approach, tol, phi1_mean):
     problems = []
@@ -193,6 +197,21 @@ def _on_blade(surface, params):
     return ok
 
 
+_CYCLES: dict[tuple, np.ndarray] = {}
+
+
+def _cycle(T, n):
+    """``np.linspace(-T / 2, T / 2, n)``, kept for the last few (T, n) (read-only)."""
+    key = (T, n)
+    out = _CYCLES.get(key)
+    if out is None:
+        if len(_CYCLES) >= 16:
+            _CYCLES.clear()
+        out = _CYCLES[key] = np.linspace(-T / 2, T / 2, n)
+        out.flags.writeable = False
+    return out
+
+
 def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = None, phi1_mean: float = 0.0,
               n_positions: int = 41, pairs=(-1, 0, 1), start=None, approach: float = GLEASON_APPROACH,
               tol: float = 1e-10, line_tol: float = 1e-7, line_anchor: int | None = 1,
@@ -264,9 +283,10 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         raise NoContactError(f"no contact at the mean position phi1 = {phi1_mean:.6g} rad "
                              f"(residual {res[0]:.3e} mm, n1.n2 = {n1f @ n2f:.3f})")
     phi2_mean = float(xm[4])
-    drive = 1 if _k.cross(prob.axes[0], r1f) @ n1f > 0 else -1
+    (a0, a1, a2), (p0, p1, p2), (m0, m1, m2) = np.asarray(prob.axes[0], float).tolist(), r1f.tolist(), n1f.tolist()
+    drive = 1 if (a1 * p2 - a2 * p1) * m0 + (a2 * p0 - a0 * p2) * m1 + (a0 * p1 - a1 * p0) * m2 > 0 else -1
     # ---------------------------------------------------------------- 2. continuation nodes
-    phi1 = phi1_mean + np.linspace(-T / 2, T / 2, n_positions)
+    phi1 = phi1_mean + _cycle(T, n_positions)
     off = (phi1 - phi1_mean)[:, None] + pairs[None, :] * T  # effective offsets (n, P)
     xp0 = prob.path_tangent(Jm, dm[2], Em)[0]
     half = T / 2
@@ -275,12 +295,13 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     # ---------------------------------------------------------------- 3. all positions x pairs
     # beyond a node the continuation could not reach, the path of contact has ended (the extended flanks end or
     # the normals turn away): those offsets are not solved and are reported as no contact
-    guess = _predict(off.reshape(-1), nodes, X, Xp)
-    phi_eff = phi1_mean + off.reshape(-1)
-    reach = (off.reshape(-1) >= o_fail_lo - 1e-12) & (off.reshape(-1) <= o_fail_hi + 1e-12)
+    offs = off.reshape(-1)
+    guess = _predict(offs, nodes, X, Xp)
+    phi_eff = phi1_mean + offs
+    reach = (offs >= o_fail_lo - 1e-12) & (offs <= o_fail_hi + 1e-12)
     x, conv, res, J, data, iters, _ = _solve_reachable(prob, phi_eff, guess, reach, tol)
     line = conv & _b.is_singular(J, line_tol)
-    if np.any(line) and line_anchor is not None:
+    if line.any() and line_anchor is not None:
         # contact line: pick the point of the line where pinion parameter `line_anchor` has its reference value
         ref = getattr(pinion, "reference_params", None)
         value = float(ref[line_anchor]) if ref is not None else float(xm[line_anchor])
@@ -305,7 +326,7 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     n2f = np.einsum("mij,mj->mi", R2, n2)
     pf = o1 + np.einsum("mij,mj->mi", R1, r1)
     valid = conv & (np.einsum("mi,mi->m", n1f, n2f) < -0.5)
-    kk = np.broadcast_to(pairs, (n, P)).reshape(-1)
+    kk = np.repeat(pairs[None, :], n, axis=0).reshape(-1)
     phi2 = prob.gear_angle(x[:, 4], kk)
     te = drive * (-(phi2 - phi2_mean) - ratio * (np.repeat(phi1, P) - phi1_mean))
     # a "contact" whose TE exceeds half an angular pitch of the gear belongs to no tooth pair of this mesh: Newton
@@ -313,7 +334,7 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     valid &= np.abs(te) < np.pi / z2
     # (only valid contacts need the test: the statuses below read it there alone)
     inside = np.zeros(n * P, bool)
-    iv = np.flatnonzero(valid)
+    iv = valid.nonzero()[0]
     # surfaces without edges (flank_bounds False: toe, heel and top extended), but a contact must still be generated
     # by a blade: on its straight edge or fillet (not beyond the blade tip) where the equation of meshing of
     # generation has a root; past the tip Newton can converge to a spurious touch of the extended surfaces below the
@@ -324,13 +345,14 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         iv = iv[inside[iv]]
     if iv.size:
         inside[iv] = test(gear, x[iv, 2:4])
-    sp = np.full(n * P, int(ContactStatus.NO_CONTACT))
-    sp[valid & inside & ~line] = ContactStatus.OK
-    sp[valid & inside & line] = ContactStatus.LINE
-    sp[valid & ~inside] = ContactStatus.EDGE
+    sp = np.full(n * P, _NONE)
+    vi = valid & inside
+    sp[vi & ~line] = _OK
+    sp[vi & line] = _LINE
+    sp[valid & ~inside] = _EDGE
     te = np.where(valid, te, np.nan)
     te2 = te.reshape(n, P)
-    if not np.any(np.isfinite(te2)):
+    if not np.isfinite(te2).any():
         raise NoContactError(f"no contact at any of the {n} positions phi1 in [{phi1[0]:.6g}, {phi1[-1]:.6g}] rad")
     sp2 = sp.reshape(n, P)
     # edge contacts: where a pair's surface contact lies beyond a flank boundary (and next to such positions where it
@@ -347,11 +369,11 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     has_edge = np.isfinite(te_edge)
     # a pair's status: OK/LINE (surface contact of the real flanks), EDGE (edge contact solved: its TE, points on the
     # boundary curve and the touched flank), NO_CONTACT
-    sp2 = np.where(sp2 == ContactStatus.EDGE, int(ContactStatus.NO_CONTACT), sp2)
-    sp2 = np.where(has_edge, int(ContactStatus.EDGE), sp2)
-    te2 = np.where(has_edge, te_edge, np.where((sp2 == ContactStatus.OK) | (sp2 == ContactStatus.LINE), te2, np.nan))
-    if np.any(has_edge):
-        fe = np.flatnonzero(has_edge.reshape(-1))
+    sp2 = np.where(sp2 == _EDGE, _NONE, sp2)
+    sp2[has_edge] = _EDGE
+    te2 = np.where(has_edge, te_edge, np.where((sp2 == _OK) | (sp2 == _LINE), te2, np.nan))
+    if has_edge.any():
+        fe = has_edge.reshape(-1).nonzero()[0]
         x[fe] = x_edge.reshape(-1, 5)[fe]
         q1, q2 = x[fe, 0:2], x[fe, 2:4]
         e1 = surface_derivatives(pinion, q1)
@@ -364,23 +386,26 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
         phi2[fe] = prob.gear_angle(x[fe, 4], kk[fe])
         valid[fe] = True
         res[fe] = 0.0
-    if not np.any(np.isfinite(te2)):
+    fin = np.isfinite(te2)
+    if not fin.any():
         raise NoContactError(f"no contact of the real flanks at any of the {n} positions phi1 in "
                              f"[{phi1[0]:.6g}, {phi1[-1]:.6g}] rad")
     # pair in contact: the largest TE (it leads the gear) among the contacts of the real flanks, surface or edge
-    score = np.where(np.isfinite(te2), te2, -np.inf)
-    anyv = np.any(np.isfinite(te2), axis=1)
+    score = np.where(fin, te2, -np.inf)
+    anyv = fin.any(axis=1)
     # ties (several pairs within te_tie of the largest TE, e.g. line contact of conjugate flanks): a surface contact
     # before an edge contact of the same line, then the first pair in `pairs` order
-    tmax = np.max(score, axis=1, keepdims=True)
+    tmax = score.max(axis=1, keepdims=True)
     tie = score >= tmax - te_tie
-    rank = np.where(tie, np.where(sp2 == ContactStatus.EDGE, 1, 2), 0)
-    sel = np.where(anyv, np.argmax(rank, axis=1), -1)
-    status = np.where(anyv, sp2[np.arange(n), np.maximum(sel, 0)], int(ContactStatus.NO_CONTACT))
-    edge_pos = status == ContactStatus.EDGE
-    edges = [(int(i), int(pairs[sel[i]])) + tuple(labels[(int(i), int(sel[i]))][:2]) for i in np.flatnonzero(edge_pos)]
+    rank = np.where(tie, np.where(sp2 == _EDGE, 1, 2), 0)
+    sel = np.where(anyv, rank.argmax(axis=1), -1)
+    sel0 = np.maximum(sel, 0)
+    status = np.where(anyv, sp2[np.arange(n), sel0], _NONE)
+    edge_pos = status == _EDGE
+    sl, pl = sel.tolist(), pairs.tolist()
+    edges = [(i, pl[sl[i]]) + tuple(labels[(i, sl[i])][:2]) for i in edge_pos.nonzero()[0].tolist()]
     # ellipses at the selected contacts
-    flat = np.arange(n) * P + np.maximum(sel, 0)
+    flat = np.arange(n) * P + sel0
     nocon_or_edge = ~anyv | edge_pos
     # (positions without contact may carry no surface data, NaN: their ellipses are NaN, set below anyway)
     lam, dirs, W1, W2 = np.empty((n, 2)), np.empty((n, 2, 3)), np.empty((n, 3, 3)), np.empty((n, 3, 3))
@@ -389,11 +414,12 @@ def solve_tca(pinion, gear, kinematics, *, misalignment: Misalignment | None = N
     _e.weingarten_batch(np.ascontiguousarray(dr2[flat]), np.ascontiguousarray(dn2[flat]), R2s, True, W2)
     _e.relative_curvature_batch(W1, W2, np.ascontiguousarray(n1f[flat]), lam, dirs)
     axes_ = _k.ellipse_axes(lam, approach)
-    axes_ = np.where((status == ContactStatus.LINE)[:, None], np.inf, axes_)
+    axes_ = np.where((status == _LINE)[:, None], np.inf, axes_)
     dirs1 = np.einsum("mji,mkj->mki", R1s, dirs)
     dirs2 = np.einsum("mji,mkj->mki", R2s, dirs)
-    for arr in (lam, axes_, dirs1, dirs2):
-        arr[nocon_or_edge] = np.nan
+    if nocon_or_edge.any():
+        for arr in (lam, axes_, dirs1, dirs2):
+            arr[nocon_or_edge] = np.nan
     # transfer points: where the pair in contact changes, at the exact crossing of the two pairs' TE curves
     kinds = np.full((n, P), -1)
     for (i, j), lab in labels.items():

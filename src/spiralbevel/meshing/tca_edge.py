@@ -117,9 +117,10 @@ def _stage_compiled(prob, fast, x, status, te_surface, phi1, pairs, tol, te_tie,
     label = {}
     k1, K = len(names[0]), len(names[0]) + len(names[1])
     o = lab[..., 2].reshape(-1)
-    for f in np.flatnonzero(o >= 0)[np.argsort(o[o >= 0], kind="stable")]:
-        i, j = divmod(int(f), P)
-        label[(i, j)] = _label(names, k1, K, int(lab[i, j, 0]), int(lab[i, j, 1]))
+    on = (o >= 0).nonzero()[0]
+    lm, le = lab[..., 0].reshape(-1).tolist(), lab[..., 1].reshape(-1).tolist()
+    for f in on[np.argsort(o[on], kind="stable")].tolist():
+        label[divmod(f, P)] = _label(names, k1, K, lm[f], le[f])
     return x_edge, te_edge, label
 
 

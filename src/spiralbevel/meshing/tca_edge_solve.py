@@ -132,7 +132,7 @@ def flank_contains(surface, q):
     tol, sheet = t[1]
     g, _, o = _ke.margins_batch(b[0], b[1], np.ascontiguousarray(q, float).reshape(-1, 2))
     with np.errstate(invalid="ignore"):
-        out = np.all(g >= -tol, axis=1)
+        out = (g >= -tol).all(axis=1)
         if sheet != 0.0:
             out &= o * sheet > 0.0
     return out

@@ -110,7 +110,7 @@ def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10
     """
     sel = np.asarray(sel)
     a, b = sel[:-1], sel[1:]
-    ic = np.flatnonzero((a >= 0) & (b >= 0) & (a != b))  # the pair in contact changes between i and i + 1
+    ic = ((a >= 0) & (b >= 0) & (a != b)).nonzero()[0]  # the pair in contact changes between i and i + 1
     ac, bc = a[ic], b[ic]
     d0 = te2[ic, bc] - te2[ic, ac]
     d1 = te2[ic + 1, bc] - te2[ic + 1, ac]
@@ -119,19 +119,22 @@ def exact_transfers(prob, phi1, sel, te2, x2, kinds, pairs, te_of_phi, tol=1e-10
     m = len(I)
     if not m:
         return np.zeros(0), np.zeros(0)
-    lo, hi = phi1[I].astype(float), phi1[I + 1].astype(float)
+    # (an integer index array returns a new array: no copies beyond these)
+    I1 = I + 1
+    lo, hi = np.asarray(phi1[I], float), np.asarray(phi1[I1], float)
     # each pair's contact at the other end of the interval: solved from its own solution where it is missing
-    ta_hi, tb_lo = te2[I + 1, A].copy(), te2[I, B].copy()
-    xa, xb = x2[I, A].copy(), x2[I + 1, B].copy()
+    ta_hi, tb_lo = te2[I1, A], te2[I, B]
+    xa, xb = x2[I, A], x2[I1, B]
     ka, kb = kinds[I, A], kinds[I + 1, B]
     fast = None if te_frame is None else _compiled(prob, ka, kb, tol, te_frame, iterations)
     if fast is not None:   # the whole iteration in one compiled call
         phi_t, te_t = np.empty(m), np.empty(m)
         iv, fv, p1, p2, mp1, mp2, junction, d, M2 = fast
-        _kt.transfer_points(iv, fv, p1, p2, mp1, mp2, junction, d, M2, lo, hi, np.array(te2[I, A], float),
-                            np.array(te2[I + 1, B], float), ta_hi, tb_lo, xa, xb, np.array(ka, np.int64),
-                            np.array(kb, np.int64), np.array(pairs[A], np.int64), np.array(pairs[B], np.int64), phi_t,
-                            te_t)
+        _kt.transfer_points(iv, fv, p1, p2, mp1, mp2, junction, d, M2, lo, hi, np.asarray(te2[I, A], float),
+                            np.asarray(te2[I1, B], float), np.asarray(ta_hi, float), np.asarray(tb_lo, float),
+                            np.asarray(xa, float), np.asarray(xb, float), np.asarray(ka, np.int64),
+                            np.asarray(kb, np.int64), np.asarray(pairs[A], np.int64), np.asarray(pairs[B], np.int64),
+                            phi_t, te_t)
         return phi_t, te_t
     miss_a, miss_b = ~np.isfinite(ta_hi), ~np.isfinite(tb_lo)
     if miss_a.any() or miss_b.any():
