@@ -131,6 +131,15 @@ def test_missing_signature_of_a_package_call_fails(monkeypatch, tmp_path):
         ns["call"](np.ones(2))
 
 
+@needs_aot
+def test_every_table_kernel_is_exported_but_the_jit_only_ones():
+    from spiralbevel._core.aot_build import JIT_ONLY
+
+    for name, sigs in aot_table.SIGNATURES.items():
+        for i in range(len(sigs)):
+            assert hasattr(jit.aot_module(), export_name(name, i)) == (name not in JIT_ONLY), name
+
+
 def test_table_entries_parse_to_numba_types():
     for name, sigs in aot_table.SIGNATURES.items():
         assert sigs, name

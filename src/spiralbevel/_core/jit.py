@@ -267,8 +267,10 @@ def _attach_aot(dispatcher) -> None:
 
     attached = []
     for i, (text, _) in enumerate(sigs):
+        entry = getattr(_AOT, export_name(qualified_name(dispatcher.py_func), i), None)
+        if entry is None:  # left to the JIT (aot_build.JIT_ONLY)
+            continue
         argtypes = aot_table.parse(text)
-        entry = getattr(_AOT, export_name(qualified_name(dispatcher.py_func), i))
         dispatcher._insert([t._code for t in argtypes], entry, False)
         attached.append(argtypes)
     dispatcher._aot_signatures = tuple(attached)
