@@ -20,13 +20,26 @@ from . import aot_table, jit
 
 EXTENSION = "_aot"
 
-#: kernels of the table left to the JIT, with the reason. numba's object-mode block (``numba.objmode``, a call back
-#: into Python) does not run in a pycc extension: the call-back's result is not unboxed ("TypeError: expected dtype
-#: object, got 'tuple'", then a crash; numba 0.68.1, reproduced with a two-function module). ``settings_fit.newton``
-#: reaches one (``_lstsq``, the rare singular step), so it is compiled by the JIT on its first call.
+#: kernels of the table left to the JIT where pycc's module initialisation is not patched (``_patch_mixin``), with the
+#: reason: they reach a ``numba.objmode`` block (a call back into Python) inside a callee
 JIT_ONLY = {
-    "settings_fit.newton": "reaches a numba.objmode call-back (settings_fit._lstsq), which pycc cannot run",
+    "settings_fit.newton": "reaches a numba.objmode call-back (settings_fit._lstsq)",
 }
+
+#: numba.pycc's module initialisation (modulemixin.c, numba 0.68.1) releases the environment object of every compiled
+#: function that is not itself exported (a callee) right after storing it in the function's global: the environment
+#: (its constants, e.g. the dtype an object-mode block boxes an array with) is freed while the code still uses it
+#: (then "TypeError: expected dtype object, got 'str'", or a crash). The patch keeps that reference (the environment
+#: then lives as long as the process, as an exported function's does through its function object).
+_MIXIN_BUG = """        // Store the environment pointer into the global
+        *envgvs[i] = envobj;
+        Py_DECREF(envobj);
+    }
+    Py_DECREF(docobj);"""
+_MIXIN_FIX = """        // Store the environment pointer into the global (the reference is kept: spiralbevel's patch)
+        *envgvs[i] = envobj;
+    }
+    Py_DECREF(docobj);"""
 
 
 def export_name(qualified: str, i: int) -> str:
@@ -66,8 +79,9 @@ def make_cc(output_dir: str | os.PathLike | None = None, target_cpu: str = "host
     cc.target_cpu = target_cpu
     if output_dir is not None:
         cc.output_dir = str(output_dir)
+    patched = _patch_mixin(cc)
     for qualified, signatures in sorted(aot_table.SIGNATURES.items()):
-        if qualified in JIT_ONLY:
+        if qualified in JIT_ONLY and not patched:
             continue
         module, name = qualified.split(".")
         dispatcher = getattr(modules[module], name)
@@ -77,6 +91,28 @@ def make_cc(output_dir: str | os.PathLike | None = None, target_cpu: str = "host
     key = aot_key()
     cc.export("aot_key", types.unicode_type())(_constant(key))
     return cc
+
+
+def _patch_mixin(cc) -> bool:
+    """Build ``cc`` with a copy of pycc's ``modulemixin.c`` that has ``_MIXIN_FIX``; False where the numba at hand has
+    no ``_MIXIN_BUG`` (changed or fixed: nothing patched, ``JIT_ONLY`` left out)."""
+    import tempfile
+
+    import numba.pycc
+
+    here = Path(numba.pycc.__file__).parent
+    text = (here / "modulemixin.c").read_text()
+    if text.count(_MIXIN_BUG) != 1:
+        return False
+    d = Path(tempfile.mkdtemp(prefix="spiralbevel-pycc-")) / "pycc"
+    d.mkdir()
+    (d / "modulemixin.c").write_text(text.replace(_MIXIN_BUG, _MIXIN_FIX))
+    sources, includes = cc._get_mixin_sources, cc._toolchain.get_python_include_dirs
+    # the copy's relative includes ("../_helperlib.c") resolve through numba's own pycc directory
+    cc._get_mixin_sources = lambda: [str(d / "modulemixin.c") if s.endswith("modulemixin.c") else os.path.normpath(s)
+                                     for s in sources()]
+    cc._toolchain.get_python_include_dirs = lambda: [*includes(), str(here)]
+    return True
 
 
 def _constant(value: str):

@@ -106,18 +106,27 @@ docs/performance.md, "Cold start", from ``bench/bench_compile.py --aot/--warm/--
   and the kernels are JIT-compiled on first use. ``cc.target_cpu = "host"``: the extension is built on the machine
   that installs the package, for that CPU, as the JIT would compile (a wheel built elsewhere would need a generic
   CPU name instead).
-* The table: the signatures with which the package calls kernels from Python (27 of 26 kernels; the envelope's
-  kernel is called with a read-only guess by one path). ``python -m spiralbevel._core.aot_record`` records them
-  (``jit._Kernel._compile_for_args``, the one place numba's dispatcher calls back into Python for a call it has no
-  machine code for) from the bundled examples and the test suite. The test suite runs with
-  ``SPIRALBEVEL_AOT_STRICT=1``: a call from the package with argument types missing from the table fails the test
-  that made it (the drift check: a new kernel or a changed argument needs the table regenerated).
-* Limits: ``numba.pycc`` is in pending deprecation since numba 0.57 (its replacement, ``numba.core.aot``/PIXIE, is
-  not released); if a numba release drops it, the build fails, the install goes on without the extension and the
-  kernels are JIT-compiled as before. The extension's entry points do not release the GIL (``nogil`` applies to
-  the JIT's entry points only): the package runs its kernels in one thread per process (dask sweeps use
-  processes). The extension holds its own copy of numba's runtime (NRT); arrays move between it and the JIT as
-  numpy arrays.
+* The table: the signatures with which the package calls kernels from Python (29 signatures of 26 kernels: three
+  kernels, ``envelope_kernel._envelope_loop``, ``grid_locate.iterate_feet`` and ``blade_locate.locate_R_u``, are
+  also called with a read-only array by some path, a second signature each, which the JIT compiles again too).
+  ``python -m spiralbevel._core.aot_record`` records them (``jit._Kernel._compile_for_args``, the one place numba's
+  dispatcher calls back into Python for a call it has no machine code for) from the bundled examples and the test
+  suite. The test suite runs with ``SPIRALBEVEL_AOT_STRICT=1``: a call from the package with argument types missing
+  from the table fails the test that made it (the drift check: a new kernel or a changed argument needs the table
+  regenerated).
+* A pycc bug, patched at the build: the extension's module initialisation (numba's ``pycc/modulemixin.c``, 0.68.1)
+  frees the environment object of every compiled callee right after storing it, and a callee that reads its
+  environment then reads freed memory: a ``numba.objmode`` block (a call back into Python) boxing an array does
+  ("TypeError: expected dtype object, got 'str'", or a crash; ``settings_fit._lstsq``, the settings fit's rare
+  singular step, below ``settings_fit.newton``). ``aot_build`` compiles a copy of that file that keeps the reference
+  (``_MIXIN_FIX``); where the numba at hand has other code there, nothing is patched and the kernels that reach an
+  object-mode block (``aot_build.JIT_ONLY``) are left to the JIT.
+* Limits: ``numba.pycc`` is in pending deprecation since numba 0.57; if a numba release drops it, the build fails, the
+  install goes on without the extension and the kernels are JIT-compiled as before. The extension's entry points do
+  not release the GIL (``nogil`` applies to the JIT's entry points only): the package runs its kernels in one thread
+  per process (the local dask sweep uses processes; on a dask cluster whose workers run several threads, their kernel
+  calls would take turns). The extension holds its own copy of numba's runtime (NRT); arrays move between it and the
+  JIT as numpy arrays.
 """
 
 from __future__ import annotations
@@ -297,6 +306,14 @@ class _Kernel(CPUDispatcher):
         """Argument signatures: those compiled in this process and those the extension answers."""
         return list(self.overloads) + [s for s in self._aot_signatures if s not in self.overloads]
 
+    def add_overload(self, cres):
+        if os.environ.get("SPIRALBEVEL_AOT_RECORD"):
+            # recording: machine code compiled for a caller kernel is not put into numba's table of Python calls, so
+            # that a Python call with the same types still comes to _compile_for_args (and is recorded)
+            self.overloads[tuple(cres.signature.args)] = cres
+            return
+        super().add_overload(cres)
+
     def _compile_for_args(self, *args, **kws):
         # reached from numba's C dispatcher only when no overload matches a Python call's argument types
         check = os.environ.get("SPIRALBEVEL_AOT_STRICT") == "1"
@@ -313,10 +330,14 @@ class _Kernel(CPUDispatcher):
                 f"_core/aot_table.py: the ahead-of-time extension would not answer this call (the JIT would compile "
                 f"it, tens of seconds on a first run); regenerate the table (python -m spiralbevel._core.aot_record)")
         result = super()._compile_for_args(*args, **kws)
-        if record:
+        if record and (name, argtypes) not in _RECORDED:
+            _RECORDED.add((name, argtypes))
             with open(record, "a") as f:
                 f.write(f"{name}\t{argtypes!r}\t{self.overloads[argtypes].signature.return_type!r}\n")
         return result
+
+
+_RECORDED: set = set()
 
 
 def _called_from_package() -> bool:
