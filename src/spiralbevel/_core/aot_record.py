@@ -1,18 +1,23 @@
 """Record the argument signatures with which Python calls the kernels, and write them to ``aot_table.py``.
 
-Run after a change of a kernel's arguments (or of which kernels Python calls)::
+Run after a change of a kernel's arguments (or of which kernels Python calls), then reinstall (``pip install -e .``)
+to rebuild the extension::
 
-    SPIRALBEVEL_AOT=0 python -m spiralbevel._core.aot_record            # every bundled example
-    SPIRALBEVEL_AOT=0 python -m spiralbevel._core.aot_record --tests    # and the test suite (minutes)
+    SPIRALBEVEL_AOT=0 python -m spiralbevel._core.aot_record --tests    # the bundled examples and the test suite
 
-then reinstall (``pip install -e .``) to rebuild the extension. A Python call of a kernel reaches numba's
-``Dispatcher._compile_for_args`` once per process and new argument signature (kernel calls from other kernels are
-typed inside the compiler and never do); ``jit._Kernel`` overrides that method and, with
-``SPIRALBEVEL_AOT_RECORD`` set to a file, appends the kernel's name and the numba types of its arguments and result.
-The test suite's own direct calls of kernels (from ``tests/``) are not recorded: only calls from the package, which
-is what users run. ``jit._Kernel`` checks the same thing while the tests run (``SPIRALBEVEL_AOT_STRICT``, set by
-``tests/conftest.py``): a call from the package with a signature missing from the table fails. ``--merge`` keeps the
-table's entries (a signature only some other input reaches); without it the table is what this run saw.
+or, faster, with the extension of the old table installed: only the calls it does not answer are recorded and added::
+
+    python -m spiralbevel._core.aot_record --merge --tests
+
+A Python call of a kernel reaches numba's ``Dispatcher._compile_for_args`` once per process and new argument
+signature, where no overload answers it; ``jit._Kernel`` overrides that method and, with ``SPIRALBEVEL_AOT_RECORD``
+set to a file, appends the kernel's name and the numba types of its arguments and result. While recording, machine
+code compiled for a caller kernel is kept out of numba's table of Python calls (``jit._Kernel.add_overload``), so a
+Python call of a kernel that was compiled as a callee is recorded too. The test suite's own direct calls of kernels
+(from ``tests/``) are not recorded: only calls from the package, which is what users run. ``jit._Kernel`` checks the
+same thing while the tests run (``SPIRALBEVEL_AOT_STRICT``, set by ``tests/conftest.py``): a call from the package
+with a signature missing from the table fails. ``--merge`` keeps the table's entries; without it the table is what
+this run saw.
 """
 
 from __future__ import annotations
@@ -80,8 +85,8 @@ def main(argv=None) -> None:
     ap.add_argument("--merge", action="store_true", help="keep the signatures already in the table")
     ap.add_argument("--skip-examples", action="store_true", help="do not run the bundled examples")
     a = ap.parse_args(argv)
-    if os.environ.get("SPIRALBEVEL_AOT") != "0":
-        sys.exit("run with SPIRALBEVEL_AOT=0 (calls the extension answers never reach numba's compiler)")
+    if os.environ.get("SPIRALBEVEL_AOT") != "0" and not a.merge:
+        sys.exit("run with SPIRALBEVEL_AOT=0, or with --merge (calls the extension answers never reach the recorder)")
     seen: dict = collections.defaultdict(set)
     if a.merge:
         from . import aot_table

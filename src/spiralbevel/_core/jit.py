@@ -106,7 +106,7 @@ docs/performance.md, "Cold start", from ``bench/bench_compile.py --aot/--warm/--
   and the kernels are JIT-compiled on first use. ``cc.target_cpu = "host"``: the extension is built on the machine
   that installs the package, for that CPU, as the JIT would compile (a wheel built elsewhere would need a generic
   CPU name instead).
-* The table: the signatures with which the package calls kernels from Python (29 signatures of 26 kernels: three
+* The table: the signatures with which the package calls kernels from Python (30 signatures of 27 kernels: three
   kernels, ``envelope_kernel._envelope_loop``, ``grid_locate.iterate_feet`` and ``blade_locate.locate_R_u``, are
   also called with a read-only array by some path, a second signature each, which the JIT compiles again too).
   ``python -m spiralbevel._core.aot_record`` records them (``jit._Kernel._compile_for_args``, the one place numba's
