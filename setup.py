@@ -40,6 +40,12 @@ def _aot_extension():
         return None
     ext = cc.distutils_extension()
     ext.optional = True
+    # setuptools lists the extension's sources in the package manifest and rejects an absolute path outside the
+    # project (the patched copy of pycc's modulemixin.c, aot_build._patch_mixin): the manifest sees pycc's own file,
+    # the compile the patched one (_BuildExt)
+    ext.compiled_sources = list(ext.sources)
+    patched, original = getattr(cc, "patched_mixin", None), getattr(cc, "original_mixin", None)
+    ext.sources = [original if s == patched else s for s in ext.sources]
     return ext
 
 
@@ -51,7 +57,12 @@ class _BuildExt(build_ext):
         try:
             if hasattr(ext, "_prepare_object_files"):  # numba.pycc's extension: compile the kernels to an object file
                 ext._prepare_object_files(self)
-            super().build_extension(ext)
+            listed = ext.sources
+            ext.sources = getattr(ext, "compiled_sources", listed)
+            try:
+                super().build_extension(ext)
+            finally:
+                ext.sources = listed
         except Exception as err:  # noqa: BLE001
             if not getattr(ext, "optional", False):
                 raise

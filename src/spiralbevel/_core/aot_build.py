@@ -112,6 +112,7 @@ def _patch_mixin(cc) -> bool:
     cc._get_mixin_sources = lambda: [str(d / "modulemixin.c") if s.endswith("modulemixin.c") else os.path.normpath(s)
                                      for s in sources()]
     cc._toolchain.get_python_include_dirs = lambda: [*includes(), str(here)]
+    cc.patched_mixin, cc.original_mixin = str(d / "modulemixin.c"), str(here / "modulemixin.c")
     return True
 
 
