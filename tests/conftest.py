@@ -9,6 +9,9 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 # the FE compliance cache of LTCA goes to a fresh directory per test session
 os.environ.setdefault("SPIRALBEVEL_CACHE", __import__("tempfile").mkdtemp(prefix="spiralbevel-cache-"))
+# a kernel called from the package with argument types missing from the ahead-of-time extension's table fails the test
+# that made the call (tests/_core/test_aot.py; _core/jit.py)
+os.environ.setdefault("SPIRALBEVEL_AOT_STRICT", "1")
 
 import matplotlib
 

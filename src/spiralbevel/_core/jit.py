@@ -75,25 +75,73 @@ rules for kernels:
   distinct instructions, 40 % of today's (about 7 s less), while numba's front end alone (about 17 s CPU at load
   8-10) and the job's work besides compiling (about 12 s there, 10 s idle: FE compliance and the job itself) each
   come near the target or exceed it. numba caches machine code only, not typed IR, so there is no cheaper middle
-  state to keep. The ways around are not JIT: compiling ahead of time (``numba.pycc``, pending deprecation since
-  numba 0.57; one extension module per platform built at install, generic code for the CPU family) or shipping a
-  filled cache (keyed by the CPU and the source files' time stamps); neither is done. A second
+  state to keep. The ways around are not JIT: compiling ahead of time (``numba.pycc``, below) or shipping a
+  filled cache (keyed by the CPU and the source files' time stamps, so it misses on another machine). A second
   process compiling the kernels into the same cache while the job runs was measured and not kept: on this 2-core
   machine it made the cold run slower in wall time at every load measured (43 -> 58 s at load 1.1).
 * Give each kernel one argument signature: a read-only broadcast view and a writable array are two numba types, and
   compile the kernel twice (the envelope's guess is copied for that reason).
+
+Ahead of time, at install. ``pip install`` (``setup.py``) builds the extension module ``spiralbevel._core._aot`` with
+``numba.pycc`` (``_core/aot_build.py``): for every kernel Python calls and every argument signature of the generated
+table ``_core/aot_table.py`` it exports a thin wrapper ``w(a0, ...) = kernel(a0, ...)``. pycc compiles the wrapper;
+the kernel below it is compiled by its own dispatcher with the options above (``error_model="numpy"``, no fastmath:
+pycc's own default error model is Python's) and its LLVM IR is linked into the extension, so the extension runs the
+same code as the JIT: the CMC example's outputs are identical byte for byte, the kernels bit for bit on random inputs
+(``tests/_core/test_aot.py``). At run time nothing else changes: ``kernel`` still returns a numba dispatcher (kernels
+call kernels, and typing needs one), and puts each exported wrapper into that dispatcher's own overload table
+(``_attach_aot``) under the argument types of its signature. numba's dispatcher (C code) picks the overload of a
+Python call by the arguments' type codes and calls its CPython entry point; pycc's wrappers are CPython functions
+with the same calling convention that unbox the same types, so the same call sites run the extension's machine code,
+with no Python-level indirection (a call with other argument types falls through to the JIT as before). The first
+run after an install then compiles nothing (the CMC example cold: 0 compiles instead of 83; figures in
+docs/performance.md, "Cold start", from ``bench/bench_compile.py --aot/--warm/--build``).
+
+* Which extension counts: its ``aot_key()`` (the numba version and ``sources_key`` of the ``_core`` sources it was
+  built from) must equal the running one; after a developer edits any ``_core`` file, or under another numba, it is
+  ignored (one logged notice) and the kernels are JIT-compiled and cached as before, until the next ``pip install
+  -e .``. ``SPIRALBEVEL_AOT=0`` ignores it too (for developers and for the benchmarks' comparison); at install it
+  skips the build.
+* It is optional: without a C compiler, or if numba cannot build it, the install goes on without it (one notice)
+  and the kernels are JIT-compiled on first use. ``cc.target_cpu = "host"``: the extension is built on the machine
+  that installs the package, for that CPU, as the JIT would compile (a wheel built elsewhere would need a generic
+  CPU name instead).
+* The table: the signatures with which the package calls kernels from Python (30 signatures of 27 kernels: three
+  kernels, ``envelope_kernel._envelope_loop``, ``grid_locate.iterate_feet`` and ``blade_locate.locate_R_u``, are
+  also called with a read-only array by some path, a second signature each, which the JIT compiles again too).
+  ``python -m spiralbevel._core.aot_record`` records them (``jit._Kernel._compile_for_args``, the one place numba's
+  dispatcher calls back into Python for a call it has no machine code for) from the bundled examples and the test
+  suite. The test suite runs with ``SPIRALBEVEL_AOT_STRICT=1``: a call from the package with argument types missing
+  from the table fails the test that made it (the drift check: a new kernel or a changed argument needs the table
+  regenerated).
+* A pycc bug, patched at the build: the extension's module initialisation (numba's ``pycc/modulemixin.c``, 0.68.1)
+  frees the environment object of every compiled callee right after storing it, and a callee that reads its
+  environment then reads freed memory: a ``numba.objmode`` block (a call back into Python) boxing an array does
+  ("TypeError: expected dtype object, got 'str'", or a crash; ``settings_fit._lstsq``, the settings fit's rare
+  singular step, below ``settings_fit.newton``). ``aot_build`` compiles a copy of that file that keeps the reference
+  (``_MIXIN_FIX``); where the numba at hand has other code there, nothing is patched and the kernels that reach an
+  object-mode block (``aot_build.JIT_ONLY``) are left to the JIT.
+* Limits: ``numba.pycc`` is in pending deprecation since numba 0.57; if a numba release drops it, the build fails, the
+  install goes on without the extension and the kernels are JIT-compiled as before. The extension's entry points do
+  not release the GIL (``nogil`` applies to the JIT's entry points only): the package runs its kernels in one thread
+  per process (the local dask sweep uses processes; on a dask cluster whose workers run several threads, their kernel
+  calls would take turns). The extension holds its own copy of numba's runtime (NRT); arrays move between it and the
+  JIT as numpy arrays.
 """
 
 from __future__ import annotations
 
 import contextlib
 import hashlib
+import importlib
 import logging
 import os
+import sys
 import tempfile
 from pathlib import Path
 
 import numba
+from numba.core.registry import CPUDispatcher
 
 __all__ = ["kernel"]
 
@@ -117,8 +165,7 @@ def sources_key(paths) -> str:
 def cache_dir() -> Path:
     """Directory of the compiled kernels' machine code (see the module docstring)."""
     base = os.environ.get("SPIRALBEVEL_CACHE") or os.path.join(os.path.expanduser("~"), ".cache", "spiralbevel")
-    key = sources_key(Path(__file__).parent.glob("*.py"))
-    return Path(base) / "numba" / f"{numba.__version__}-{key}"
+    return Path(base) / "numba" / f"{numba.__version__}-{_sources_key()}"
 
 
 def _writable(d: Path) -> bool:
@@ -149,12 +196,22 @@ def _numba_cache_dir(d: Path):
 def kernel(fun=None, **options):
     """Compile ``fun`` with numba (``cache=True`` where a cache directory is writable, else in memory).
 
-    Use as ``@kernel`` or ``@kernel(inline="always")``; ``options`` are passed to ``numba.njit``.
+    Use as ``@kernel`` or ``@kernel(inline="always")``; ``options`` are passed to ``numba.njit``. Where the
+    ahead-of-time extension is installed and current, the calls from Python with a signature of its table run its
+    machine code (``_attach_aot``).
     """
     if fun is None:
         return lambda f: kernel(f, **options)
+    dispatcher = _jit(fun, {**_OPTIONS, **options})
+    dispatcher.__class__ = _Kernel
+    _attach_aot(dispatcher)
+    return dispatcher
+
+
+def _jit(fun, opts):
     global _CACHE
-    opts = {**_OPTIONS, **options}
+    if _BUILDING:  # the extension's build links the kernels' LLVM IR: compile in memory, read no cache
+        return numba.njit(cache=False, **opts)(fun)
     if _CACHE is None:
         _CACHE = cache_dir()
     if _writable(_CACHE):
@@ -166,3 +223,125 @@ def kernel(fun=None, **options):
     else:
         _log.info("numba cache directory %s not writable; compiling %s in memory", _CACHE, fun.__qualname__)
     return numba.njit(cache=False, **opts)(fun)
+
+
+# --- the ahead-of-time extension (see the module docstring) ---
+
+#: set by ``aot_build`` while it builds the extension
+_BUILDING = False
+_AOT: object = None  # the extension module once looked up, False where there is none (or it is stale or disabled)
+
+
+def qualified_name(fun) -> str:
+    """``module.function`` of a kernel, ``module`` relative to ``spiralbevel._core``: the key of ``aot_table``."""
+    return f"{fun.__module__.rsplit('.', 1)[-1]}.{fun.__qualname__}"
+
+
+def aot_module():
+    """The extension ``spiralbevel._core._aot`` if it is installed, built from the current sources and numba and not
+    disabled (``SPIRALBEVEL_AOT=0``), else ``False`` (the kernels are compiled by the JIT); looked up once."""
+    global _AOT
+    if _AOT is None:
+        _AOT = False
+        if os.environ.get("SPIRALBEVEL_AOT", "1") == "0" or _BUILDING:
+            return _AOT
+        try:
+            _aot = importlib.import_module(f"{__package__}._aot")  # built at install (setup.py)
+        except ImportError as err:
+            _log.info("the compiled kernels' extension is not built (%s): compiling them on first use (JIT)", err)
+            return _AOT
+        key = f"{numba.__version__}-{_sources_key()}"
+        if _aot.aot_key() != key:
+            _log.info("the compiled kernels' extension was built from other sources (%s, now %s): compiling them on "
+                      "first use (JIT)", _aot.aot_key(), key)
+            return _AOT
+        _AOT = _aot
+    return _AOT
+
+
+def _attach_aot(dispatcher) -> None:
+    """Put the extension's functions of ``dispatcher``'s signatures into numba's overload table of ``dispatcher``.
+
+    numba's dispatcher (C code) finds the overload of a Python call by the argument types' codes and calls its
+    CPython entry point; the extension's exported wrappers are CPython functions of the same calling convention
+    (``METH_VARARGS | METH_KEYWORDS``) that unbox the same types. Calls from other kernels are typed by the
+    dispatcher as before (they link the kernel's IR and never reach this table).
+    """
+    from . import aot_table
+
+    sigs = aot_table.SIGNATURES.get(qualified_name(dispatcher.py_func))
+    if not sigs or not aot_module():
+        return
+    from .aot_build import export_name
+
+    attached = []
+    for i, (text, _) in enumerate(sigs):
+        entry = getattr(_AOT, export_name(qualified_name(dispatcher.py_func), i), None)
+        if entry is None:  # left to the JIT (aot_build.JIT_ONLY)
+            continue
+        argtypes = aot_table.parse(text)
+        dispatcher._insert([t._code for t in argtypes], entry, False)
+        attached.append(argtypes)
+    dispatcher._aot_signatures = tuple(attached)
+
+
+_KEY: str | None = None
+
+
+def _sources_key() -> str:
+    global _KEY
+    if _KEY is None:
+        _KEY = sources_key(Path(__file__).parent.glob("*.py"))
+    return _KEY
+
+
+class _Kernel(CPUDispatcher):
+    """numba's dispatcher, knowing the signatures the extension answers (``signatures``) and checking, under the test
+    suite (``SPIRALBEVEL_AOT_STRICT``), that every call from the package has a signature of the table."""
+
+    _aot_signatures: tuple = ()
+
+    @property
+    def signatures(self):
+        """Argument signatures: those compiled in this process and those the extension answers."""
+        return list(self.overloads) + [s for s in self._aot_signatures if s not in self.overloads]
+
+    def add_overload(self, cres):
+        if os.environ.get("SPIRALBEVEL_AOT_RECORD"):
+            # recording: machine code compiled for a caller kernel is not put into numba's table of Python calls, so
+            # that a Python call with the same types still comes to _compile_for_args (and is recorded)
+            self.overloads[tuple(cres.signature.args)] = cres
+            return
+        super().add_overload(cres)
+
+    def _compile_for_args(self, *args, **kws):
+        # reached from numba's C dispatcher only when no overload matches a Python call's argument types
+        check = os.environ.get("SPIRALBEVEL_AOT_STRICT") == "1"
+        record = os.environ.get("SPIRALBEVEL_AOT_RECORD")
+        if not (check or record) or not _called_from_package():
+            return super()._compile_for_args(*args, **kws)
+        from . import aot_table
+
+        name = qualified_name(self.py_func)
+        argtypes = tuple(self.typeof_pyval(a) for a in args)
+        if check and not record and repr(argtypes) not in [a for a, _ in aot_table.SIGNATURES.get(name, ())]:
+            raise AssertionError(
+                f"kernel {name} called from the package with argument types {argtypes!r}, which are not in "
+                f"_core/aot_table.py: the ahead-of-time extension would not answer this call (the JIT would compile "
+                f"it, tens of seconds on a first run); regenerate the table (python -m spiralbevel._core.aot_record)")
+        result = super()._compile_for_args(*args, **kws)
+        if record and (name, argtypes) not in _RECORDED:
+            _RECORDED.add((name, argtypes))
+            with open(record, "a") as f:
+                f.write(f"{name}\t{argtypes!r}\t{self.overloads[argtypes].signature.return_type!r}\n")
+        return result
+
+
+_RECORDED: set = set()
+
+
+def _called_from_package() -> bool:
+    """Whether the Python caller of the kernel (three frames up: this function, ``_compile_for_args``; numba's C
+    dispatcher adds none) is code of ``spiralbevel`` (the tests' own direct calls of kernels are not)."""
+    name = sys._getframe(2).f_globals.get("__name__", "")
+    return name == "spiralbevel" or name.startswith("spiralbevel.")
