@@ -69,9 +69,9 @@ rules for kernels:
 * Where the cold time goes (the CMC example, empty cache, one process): numba's type inference and lowering are about
   60 % of the compile, LLVM the rest, half optimising and half emitting code. LLVM still optimises more than once the
   face-milled jet ``blade_jet_u`` (in 22 modules: the settings fit's, multi-point control's, blade locator's and edge
-  contact's entry points and their callees), the TCA step below the four edge-contact kernels (``tca_edge``,
-  ``tca_edge_screen``) and ``linalg.lu_solve`` below multi-point control's entry points; one entry point per family
-  would cut those too. It cannot bring the cold run to 15 s: with no duplicate at all LLVM would optimise the 45,521
+  contact's entry points and their callees), the TCA step below the edge-contact kernels (``tca_edge``,
+  ``tca_edge_stage``) and ``linalg.lu_solve`` below multi-point control's entry points; one entry point per family
+  would cut those too. The JIT cannot bring the cold run to 15 s: with no duplicate LLVM would optimise the 45,521
   distinct instructions, 40 % of today's (about 7 s less), while numba's front end alone (about 17 s CPU at load
   8-10) and the job's work besides compiling (about 12 s there, 10 s idle: FE compliance and the job itself) each
   come near the target or exceed it. numba caches machine code only, not typed IR, so there is no cheaper middle
