@@ -20,7 +20,7 @@ from .jit import kernel
 from .tca_corner_screen import FILLET, corner_excluded
 from .tca_edge import MARGIN_GENERATED, N_MARGINS, edge_newton_jets, margins, orientation
 
-__all__ = ["screen", "accept", "edge_try", "solve_screen", "orientation"]
+__all__ = ["screen", "accept", "edge_try", "solve_screen", "decode_systems", "orientation"]
 
 
 @kernel
@@ -158,6 +158,38 @@ def edge_try(kinds, p1, mp1, p2, mp2, ctol, junction, c1, s1, x, member, edge, d
             ma[i], ea[i], mb[i], eb[i] = codes[0, i], codes[1, i], codes[2, i], codes[3, i]
 
 
+@kernel(inline="always")   # one call site in each compiled caller (solve_screen, tca_transfer._te_one)
+def decode_systems(member, edge, junction, mk1, mk2, c1, s1, d, M2, mp2):
+    """Boundaries of ``m`` edge/corner systems in the code of :func:`screen` for
+    :func:`~spiralbevel._core.tca_edge.edge_newton_jets`: ``(ed (m,), ed2 (m,), skip (m,))``.
+
+    A corner row (member 0, edge ``N_MARGINS + a K + b``, K = 2 N_MARGINS) has boundaries a and b numbered over both
+    members; any other row has ``ed = edge``, ``ed2 = -1``. ``skip`` is True where the corner of the pinion's fillet
+    junction (boundary FILLET) with the gear's toe, heel or top is proved to have no root on the sampled junction
+    (:func:`~spiralbevel._core.tca_corner_screen.corner_excluded`; only with ``junction`` of 3 or more samples and
+    both margin kinds ``mk1``, ``mk2`` generated). ``c1``, ``s1``: cos, sin of the effective pinion rotations (m,).
+    """
+    m = member.shape[0]
+    N = N_MARGINS
+    K = 2 * N
+    ed = np.empty(m, np.int64)
+    ed2 = np.empty(m, np.int64)
+    for i in range(m):
+        c = edge[i] - N
+        if member[i] == 0 and c >= 0:
+            ed[i] = c // K
+            ed2[i] = c % K
+        else:
+            ed[i] = edge[i]
+            ed2[i] = -1
+    skip = np.zeros(m, np.bool_)
+    if junction.shape[0] >= 3 and mk1 == MARGIN_GENERATED and mk2 == MARGIN_GENERATED:
+        for i in range(m):
+            if ed2[i] >= 0 and ed[i] == FILLET and N <= ed2[i] <= N + 2:
+                skip[i] = corner_excluded(junction, c1[i], s1[i], d, M2, mp2, ed2[i] - N)
+    return ed, ed2, skip
+
+
 @kernel(inline="always")   # one call site in each compiled entry point
 def solve_screen(kinds, p1, mp1, p2, mp2, ctol, junction, cs, x, member, edge, d, M2, fpar, max_iter, screen_it, phi1,
                  pairs, ii, jj, floor, te_edge, x_edge, last, G, fo, flags, codes):
@@ -227,21 +259,7 @@ def solve_screen(kinds, p1, mp1, p2, mp2, ctol, junction, cs, x, member, edge, d
     m = x.shape[0]
     N = N_MARGINS
     K = 2 * N
-    ed = np.empty(m, np.int64)
-    ed2 = np.empty(m, np.int64)
-    for i in range(m):  # corner rows: boundaries a, b numbered over both members (screen's code)
-        c = edge[i] - N
-        if member[i] == 0 and c >= 0:
-            ed[i] = c // K
-            ed2[i] = c % K
-        else:
-            ed[i] = edge[i]
-            ed2[i] = -1
-    skip = np.zeros(m, np.bool_)
-    if junction.shape[0] >= 3 and kinds[1] == MARGIN_GENERATED and kinds[4] == MARGIN_GENERATED:
-        for i in range(m):   # the pinion's fillet junction (boundary FILLET) against the gear's toe, heel or top
-            if ed2[i] >= 0 and ed[i] == FILLET and N <= ed2[i] <= N + 2:
-                skip[i] = corner_excluded(junction, c1[i], s1[i], d, M2, mp2, ed2[i] - N)
+    ed, ed2, skip = decode_systems(member, edge, junction, kinds[1], kinds[4], c1, s1, d, M2, mp2)
     cv, nd, _ = edge_newton_jets(kinds[0], p1, kinds[1], mp1, kinds[2] != 0, kinds[3], p2, kinds[4], mp2,
                                  kinds[5] != 0, c1, s1, x, member, ed, ed2, d, M2, h, tol, max_iter, rcond, skip)
     for i in range(m):

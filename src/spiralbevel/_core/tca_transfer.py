@@ -24,8 +24,8 @@ import math
 import numpy as np
 
 from .jit import kernel
-from .tca_corner_screen import FILLET, corner_excluded
-from .tca_edge import MARGIN_GENERATED, N_MARGINS, edge_newton_jets
+from .tca_edge import edge_newton_jets
+from .tca_edge_screen import decode_systems
 from .tca_newton import newton_one
 
 __all__ = ["illinois_propose", "illinois_accept", "transfer_points"]
@@ -112,24 +112,14 @@ def _te_one(iv, fv, p1, p2, mp1, mp2, junction, d, M2, phi, k, kind, x, xo):
         ok = newton_one(iv[KIND1], p1, iv[KIND2], p2, c1, s1, xo, d, M2, fv[SCALE], fv[TOL], iv[MAX_ITER],
                         fv[RCOND], iv[PATIENCE], iv[HALVINGS], F, J, S1f, E)
     else:
-        N = N_MARGINS
         cc, ss = np.empty(1), np.empty(1)
         cc[0], ss[0] = c1, s1
         xe = np.empty((1, 5))
         for j in range(5):
             xe[0, j] = x[j]
-        member, ed, ed2 = np.empty(1, np.int64), np.empty(1, np.int64), np.empty(1, np.int64)
-        member[0] = kind % 2
-        e = kind // 2
-        c = e - N
-        if member[0] == 0 and c >= 0:   # a corner: boundaries a, b numbered over both members
-            ed[0], ed2[0] = c // (2 * N), c % (2 * N)
-        else:
-            ed[0], ed2[0] = e, -1
-        skip = np.zeros(1, np.bool_)
-        if junction.shape[0] >= 3 and iv[MK1] == MARGIN_GENERATED and iv[MK2] == MARGIN_GENERATED:
-            if ed2[0] >= 0 and ed[0] == FILLET and N <= ed2[0] <= N + 2:
-                skip[0] = corner_excluded(junction, cc[0], ss[0], d, M2, mp2, ed2[0] - N)
+        member, edge = np.empty(1, np.int64), np.empty(1, np.int64)
+        member[0], edge[0] = kind % 2, kind // 2
+        ed, ed2, skip = decode_systems(member, edge, junction, iv[MK1], iv[MK2], cc, ss, d, M2, mp2)
         cv, _, _ = edge_newton_jets(iv[KIND1], p1, iv[MK1], mp1, iv[SHARE1] != 0, iv[KIND2], p2, iv[MK2], mp2,
                                     iv[SHARE2] != 0, cc, ss, xe, member, ed, ed2, d, M2, fv[H_TAU], fv[TOL],
                                     iv[EDGE_MAX_ITER], fv[EDGE_RCOND], skip)
